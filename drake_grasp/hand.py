@@ -1,0 +1,147 @@
+"""Facts about the BarrettHand BH8-280, and its compliance modes.
+
+Every number here is a fact about the hardware, with its source (DESIGN.md §3 collects them):
+
+* Barrett BH8 manual, D-H table of the fingers, and the Barrett support wiki;
+* libbarrett (include/barrett/products/hand.h, src/products/hand.cpp) for the transmission ratios;
+* GraspIt! (models/robots/BarrettBH8_280) for the breakaway torque;
+* jhu-lcsr/barrett_model for per-link masses.
+
+Numbers that are *choices* (controller gains, closing speed of the simulated motor) live in the
+scenario YAML files under ``diagrams/``, not here.
+
+Geometry follows the manual's modified (Craig) Denavit-Hartenberg convention: the transform from
+frame i-1 to frame i is RotX(alpha_{i-1}) TransX(a_{i-1}) RotZ(theta_i) TransZ(d_i). Frame W is the
+hand base (``bh_base``): z along the palm normal (out of the palm, toward the object), F3 on +y,
+F1 and F2 on -y. A finger at joint angle 0 lies flat, radially outward, in the palm plane.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import enum
+import math
+
+# --- Kinematics (BH8 manual D-H table; DESIGN.md §3). Lengths in metres. -------------------------
+AW = 0.025  # Aw: offset of the F1/F2 spread axes from the palm centre, along x.
+A1 = 0.050  # A1: spread axis to proximal axis (knuckle length).
+A2 = 0.070  # A2: proximal axis to distal axis (proximal link length).
+A3 = 0.050  # A3: distal axis to fingertip (distal link length).
+D3 = 0.0095  # D3: fingertip offset toward the inner (grasping) side of the distal link.
+DW = 0.0754  # Dw: height of the finger knuckles above the hand base for the BH8-280.
+PHI2 = 0.0  # Phi2: built-in offset of the proximal joint, rad.
+PHI3 = math.radians(42.0)  # Phi3: built-in bend of the distal link, rad.
+
+FINGERS = (1, 2, 3)
+# Per finger: r (direction of the spread rotation, 0 = no spread joint) and j (quarter turns).
+FINGER_R = {1: -1, 2: 1, 3: 0}
+FINGER_J = {1: 1, 2: 1, 3: -1}
+
+# --- Joint ranges (BH8 manual; DESIGN.md §3), rad. ----------------------------------------------
+SPREAD_LIMITS = (0.0, math.pi)  # 0-180 deg, F1 and F2 each.
+PROXIMAL_LIMITS = (0.0, math.radians(140.0))  # 2.44 rad.
+DISTAL_LIMITS = (0.0, math.radians(48.0))  # 0.84 rad, relative to the proximal link.
+
+# --- Transmission (libbarrett hand.cpp; DESIGN.md §3). -------------------------------------------
+MOTOR_TO_PROXIMAL = 125.0  # motor turns per proximal-joint turn.
+MOTOR_TO_DISTAL = 375.0  # motor turns per distal-joint turn, clutch engaged.
+# After breakaway libbarrett computes outer = motor / 93.75 - inner_frozen: 375 / 93.75 = 4 times
+# faster per motor turn than in the coupled phase.
+MOTOR_TO_DISTAL_AFTER_BREAKAWAY = 93.75
+DISTAL_PER_PROXIMAL = MOTOR_TO_PROXIMAL / MOTOR_TO_DISTAL  # = 1/3 in free motion.
+BREAKAWAY_SPEEDUP = MOTOR_TO_DISTAL / MOTOR_TO_DISTAL_AFTER_BREAKAWAY  # = 4.
+
+# Breakaway torque at the proximal joint (GraspIt! BarrettBH8_280 model), N*m.
+BREAKAWAY_TORQUE = 0.5
+
+# --- Masses (DESIGN.md §3), kg. ------------------------------------------------------------------
+BASE_MASS = 0.664  # hand base, BH8-280, measured by Barrett.
+KNUCKLE_MASS = 0.141  # jhu-lcsr/barrett_model.
+PROXIMAL_MASS = 0.062
+DISTAL_MASS = 0.041
+FINGER_LOAD_LIMIT = 2.0  # kg per finger (manual).
+
+# --- Geometry of the shell (DESIGN.md §3: primitives are fine). ----------------------------------
+BASE_RADIUS = 0.0445  # hand base is a cylinder of about 89 mm diameter.
+PALM_HEIGHT = 0.080  # palm surface above the hand base frame.
+FINGER_WIDTH = 0.025  # width of a finger link, across the closing plane (assumed).
+PROXIMAL_THICKNESS = 0.020  # thickness of the proximal link, in the closing plane (assumed).
+# The distal pad surface holds the fingertip frame, D3 from the D-H line: thickness 2*D3.
+DISTAL_THICKNESS = 2.0 * D3
+
+# --- Finger force (DESIGN.md §3, assumed from the manual's force plot). --------------------------
+FINGERTIP_STALL_FORCE = 15.0  # N, lower end of the 15-25 N range.
+
+
+class ComplianceMode(enum.Enum):
+    """A pre-grasp hand shape, closed compliantly by torque close with breakaway.
+
+    The value is the spread angle of each of F1 and F2 (rad).
+    """
+
+    # Each spread joint at 60 deg: F1 and F2 are 120 deg apart, and 120 deg from F3.
+    SPHERICAL = math.radians(60.0)
+    # Spread 0: F1 and F2 side by side, opposing F3.
+    CYLINDRICAL = 0.0
+
+    @property
+    def spread(self) -> float:
+        """Spread angle of each of F1 and F2, rad."""
+        return float(self.value)
+
+    @classmethod
+    def parse(cls, name: str) -> "ComplianceMode":
+        """Returns the mode called `name` (case-insensitive), or raises ValueError naming the choices."""
+        try:
+            return cls[name.strip().upper()]
+        except KeyError:
+            choices = ", ".join(m.name.lower() for m in cls)
+            raise ValueError(f"unknown compliance mode '{name}' (choose from {choices})") from None
+
+
+class HandAction(enum.IntEnum):
+    """What the hand controller is told to do with the fingers."""
+
+    OPEN = 0  # drive every finger to 0 and re-engage the clutches.
+    CLOSE = 1  # torque close with breakaway.
+    HOLD = 2  # keep the fingers where they are (and keep squeezing if they squeeze).
+
+
+@dataclasses.dataclass(frozen=True)
+class JointNames:
+    """Names of the hand's joints and frames in the model (models/barrett_hand)."""
+
+    spread = ("bh_spread_1", "bh_spread_2")
+    proximal = ("bh_proximal_1", "bh_proximal_2", "bh_proximal_3")
+    distal = ("bh_distal_1", "bh_distal_2", "bh_distal_3")
+    base_frame = "bh_base"
+    tips = ("bh_tip_1", "bh_tip_2", "bh_tip_3")
+    palm_frame = "bh_palm"
+
+    @property
+    def all(self) -> tuple[str, ...]:
+        """The eight joints, in the order the hand controller uses: spreads, proximals, distals."""
+        return self.spread + self.proximal + self.distal
+
+
+HAND_JOINTS = JointNames()
+
+
+def finger_dh_table(finger: int, spread: float = 0.0, proximal: float = 0.0, distal: float = 0.0):
+    """Rows (a_{i-1}, alpha_{i-1}, d_i, theta_i) of one finger's modified D-H chain, W to tip.
+
+    Args:
+        finger: 1, 2 or 3.
+        spread, proximal, distal: joint angles Theta1, Theta2, Theta3 in rad (Theta1 is ignored for
+            F3, which has no spread joint).
+
+    Returns:
+        Four tuples, for the spread joint, the proximal joint, the distal joint and the tip frame.
+    """
+    r, j = FINGER_R[finger], FINGER_J[finger]
+    return (
+        (r * AW, 0.0, DW, r * spread - j * math.pi / 2),
+        (A1, math.pi / 2, 0.0, proximal + PHI2),
+        (A2, 0.0, 0.0, distal + PHI3),
+        (A3, -math.pi / 2, D3, 0.0),
+    )

@@ -1,0 +1,137 @@
+"""The robot models: kinematics against the D-H tables, and model hygiene."""
+
+import math
+
+import numpy as np
+import pytest
+from pydrake.multibody.parsing import Parser
+from pydrake.multibody.plant import AddMultibodyPlantSceneGraph
+from pydrake.systems.analysis import Simulator
+from pydrake.systems.framework import DiagramBuilder
+
+from drake_grasp import modelgen
+from drake_grasp.paths import RegisterPackage
+
+
+def _rot_x(a):
+    c, s = math.cos(a), math.sin(a)
+    return np.array([[1, 0, 0, 0], [0, c, -s, 0], [0, s, c, 0], [0, 0, 0, 1.0]])
+
+
+def _rot_z(a):
+    c, s = math.cos(a), math.sin(a)
+    return np.array([[c, -s, 0, 0], [s, c, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1.0]])
+
+
+def _trans(x, y, z):
+    T = np.eye(4)
+    T[:3, 3] = (x, y, z)
+    return T
+
+
+def barrett_fingertip(finger, spread, proximal, distal):
+    """Fingertip position in frame W, written from the BH8 manual's modified D-H table.
+
+    The numbers are typed here again on purpose (not read from drake_grasp.hand), so that a wrong
+    constant in the package cannot hide behind the same wrong constant in the test.
+    """
+    Aw, A1, A2, A3, D3, Dw = 0.025, 0.050, 0.070, 0.050, 0.0095, 0.0754
+    phi2, phi3 = 0.0, math.radians(42)
+    r = {1: -1, 2: 1, 3: 0}[finger]
+    j = {1: 1, 2: 1, 3: -1}[finger]
+    rows = [  # (a_{i-1}, alpha_{i-1}, d_i, theta_i)
+        (r * Aw, 0, Dw, r * spread - math.pi / 2 * j),
+        (A1, math.pi / 2, 0, proximal + phi2),
+        (A2, 0, 0, distal + phi3),
+        (A3, -math.pi / 2, D3, 0),
+    ]
+    T = np.eye(4)
+    for a, alpha, d, theta in rows:
+        T = T @ _rot_x(alpha) @ _trans(a, 0, 0) @ _rot_z(theta) @ _trans(0, 0, d)
+    return T[:3, 3]
+
+
+def wam_flange(q):
+    """Flange position in the WAM base frame, from the WAM manual's classical D-H table."""
+    rows = [(0, -math.pi / 2, 0), (0, math.pi / 2, 0), (0.045, -math.pi / 2, 0.55),
+            (-0.045, math.pi / 2, 0), (0, -math.pi / 2, 0.30), (0, math.pi / 2, 0), (0, 0, 0.06)]
+    T = _trans(0, 0, 0.346)
+    for (a, alpha, d), qi in zip(rows, q):
+        T = T @ _rot_z(qi) @ _trans(0, 0, d) @ _trans(a, 0, 0) @ _rot_x(alpha)
+    return T
+
+
+def _load(path):
+    builder = DiagramBuilder()
+    plant, scene_graph = AddMultibodyPlantSceneGraph(builder, time_step=0.001)
+    parser = RegisterPackage(Parser(plant))
+    (model,) = parser.AddModels(str(path))
+    return builder, plant, model
+
+
+@pytest.mark.parametrize("finger", [1, 2, 3])
+@pytest.mark.parametrize(
+    "spread, proximal, distal",
+    [(0, 0, 0), (math.radians(60), 1.0, 0.3), (math.radians(170), 2.4, 0.8), (0.5, 0.3, 0.84)],
+)
+def test_fingertip_matches_dh_table(finger, spread, proximal, distal):
+    builder, plant, model = _load(modelgen.HAND_SDF)
+    plant.WeldFrames(plant.world_frame(), plant.GetFrameByName("bh_base"))
+    plant.Finalize()
+    context = plant.CreateDefaultContext()
+    for f in (1, 2):
+        plant.GetJointByName(f"bh_spread_{f}").set_angle(context, spread)
+    for f in (1, 2, 3):
+        plant.GetJointByName(f"bh_proximal_{f}").set_angle(context, proximal)
+        plant.GetJointByName(f"bh_distal_{f}").set_angle(context, distal)
+    X_WT = plant.GetFrameByName(f"bh_tip_{finger}").CalcPoseInWorld(context)
+    expected = barrett_fingertip(finger, spread, proximal, distal)
+    np.testing.assert_allclose(X_WT.translation(), expected, atol=1e-4)
+
+
+def test_open_hand_is_flat_and_spherical_mode_is_120_degrees_apart():
+    # In the spherical mode (each spread joint at 60 deg) the three fingers point 120 deg apart
+    # (DESIGN.md §1): compare the directions in which the open fingers point, knuckle to tip.
+    angles = []
+    for finger in (1, 2, 3):
+        knuckle = np.array([{1: -0.025, 2: 0.025, 3: 0.0}[finger], 0, 0])
+        tip = barrett_fingertip(finger, math.radians(60), 0, 0)
+        assert tip[2] > 0.0754  # the distal link's 42 deg bend lifts the tip above the knuckle.
+        angles.append(math.atan2(tip[1] - knuckle[1], tip[0] - knuckle[0]))
+    diffs = sorted((b - a) % (2 * math.pi) for a, b in zip(angles, angles[1:] + angles[:1]))
+    np.testing.assert_allclose(diffs, [2 * math.pi / 3] * 3, atol=0.1)
+
+
+@pytest.mark.parametrize(
+    "q", [np.zeros(7), np.array([0.3, -1.0, 0.4, 2.0, -0.5, 0.7, 1.1]), np.array([-1, 1.5, -2, 0.5, 1, -1.2, 2.5])]
+)
+def test_wam_flange_matches_dh_table(q):
+    builder, plant, model = _load(modelgen.WAM_SDF)
+    plant.WeldFrames(plant.world_frame(), plant.GetFrameByName("wam_base"))
+    plant.Finalize()
+    context = plant.CreateDefaultContext()
+    plant.SetPositions(context, model, q)
+    X_WF = plant.GetFrameByName("wam_flange").CalcPoseInWorld(context)
+    T = wam_flange(q)
+    np.testing.assert_allclose(X_WF.translation(), T[:3, 3], atol=1e-4)
+    np.testing.assert_allclose(X_WF.rotation().matrix(), T[:3, :3], atol=1e-6)
+
+
+def test_model_files_are_generated_from_the_facts():
+    assert modelgen.HAND_SDF.read_text() == modelgen.hand_sdf(), "run: python -m drake_grasp.modelgen"
+    assert modelgen.WAM_SDF.read_text() == modelgen.wam_sdf(), "run: python -m drake_grasp.modelgen"
+
+
+def test_hand_joint_names_ranges_and_masses():
+    builder, plant, model = _load(modelgen.HAND_SDF)
+    plant.Finalize()
+    names = {plant.get_joint(i).name() for i in plant.GetJointIndices(model)}
+    for n in ["bh_spread_1", "bh_spread_2"] + [f"bh_{k}_{f}" for k in ("proximal", "distal") for f in (1, 2, 3)]:
+        assert n in names
+    assert "bh_spread_3" not in names
+    assert plant.GetJointByName("bh_proximal_2").position_upper_limits()[0] == pytest.approx(math.radians(140))
+    assert plant.GetJointByName("bh_distal_3").position_upper_limits()[0] == pytest.approx(math.radians(48))
+    assert plant.GetJointByName("bh_spread_1").position_upper_limits()[0] == pytest.approx(math.pi)
+    finger_mass = sum(plant.GetBodyByName(f"bh_finger_1_{p}").default_mass() for p in ("knuckle", "proximal", "distal"))
+    assert finger_mass == pytest.approx(0.244, abs=1e-3)  # jhu per-link masses: 0.141 + 0.062 + 0.041
+    assert plant.CalcTotalMass(plant.CreateDefaultContext()) == pytest.approx(0.664 + 3 * 0.244, abs=1e-3)
