@@ -165,7 +165,9 @@ def touches_border(mask: np.ndarray, margin_px: int = 0) -> bool:
     )
 
 
-def pixels_to_metres(length_px: float | np.ndarray, depth_m: float, focal_px: float) -> float | np.ndarray:
+def pixels_to_metres(
+    length_px: float | np.ndarray, depth_m: float, focal_px: float
+) -> float | np.ndarray:
     """Converts an image length to the length it spans on a fronto-parallel plane (pinhole camera).
 
     Args:

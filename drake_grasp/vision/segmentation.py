@@ -117,7 +117,8 @@ def rgb_to_hsv(rgb_image: np.ndarray) -> np.ndarray:
     if rgb.ndim < 1 or rgb.shape[-1] not in (3, 4):
         raise ValueError(f"expected an RGB or RGBA image of shape (..., 3|4), got {rgb.shape}")
     rgb = rgb[..., :3]
-    rgb = rgb.astype(np.float64) / 255.0 if np.issubdtype(rgb.dtype, np.integer) else rgb.astype(np.float64)
+    scale = 1.0 / 255.0 if np.issubdtype(rgb.dtype, np.integer) else 1.0
+    rgb = rgb.astype(np.float64) * scale
     red, green, blue = rgb[..., 0], rgb[..., 1], rgb[..., 2]
     value = rgb.max(axis=-1)
     chroma = value - rgb.min(axis=-1)
