@@ -20,7 +20,7 @@ stall detector.
 The clutch logic is the pure function `advance_fingers`; `HandController` is the thin LeafSystem around it.
 """
 
-from __future__ import annotations
+
 
 import dataclasses
 import math
@@ -59,9 +59,9 @@ class HandControllerParams:
     spread_torque: float = 1.0
     closing_time: float = 1.0
     spread_time: float = 0.5
-    proximal_gains: tuple[float, float] = (200.0, 0.6)
-    distal_gains: tuple[float, float] = (10.0, 0.04)
-    spread_gains: tuple[float, float] = (10.0, 0.3)
+    proximal_gains: list[float] = dataclasses.field(default_factory=lambda: [200.0, 0.6])
+    distal_gains: list[float] = dataclasses.field(default_factory=lambda: [10.0, 0.04])
+    spread_gains: list[float] = dataclasses.field(default_factory=lambda: [10.0, 0.3])
     period: float = 0.005
 
     def __post_init__(self):
@@ -75,9 +75,6 @@ class HandControllerParams:
                 "hand controller: proximal_drive_torque must exceed breakaway_torque "
                 f"({self.proximal_drive_torque} <= {self.breakaway_torque}), or the clutch never slips"
             )
-        self.proximal_gains = tuple(float(g) for g in self.proximal_gains)
-        self.distal_gains = tuple(float(g) for g in self.distal_gains)
-        self.spread_gains = tuple(float(g) for g in self.spread_gains)
 
     @property
     def proximal_speed(self) -> float:

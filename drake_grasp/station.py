@@ -1,0 +1,245 @@
+"""The grasping station: a scenario (YAML) in, one Drake Diagram out.
+
+The station holds the MultibodyPlant (table, object, WAM, BarrettHand) and its SceneGraph, the WAM's
+joint PD actuators with gravity compensation, the hand controller (torque close with breakaway), and
+the wrist RgbdSensor. It exports named ports, so that whoever drives it (the demo, a trial, the
+visual primitives) connects to names, not to the plant's internals:
+
+Input ports:
+    wam.desired_state   [q (7), v (7)] the WAM tracks, rad and rad/s.
+    hand.command        [spread target (rad), HandAction].
+Output ports:
+    wam.state, hand.state          the model instances' [q; v].
+    hand.finger_status             broken_away (3), breakaway angle (3, rad).
+    object.state                   the object's free-body state [quaternion wxyz, p_WO; w_WO, v_WO].
+    body_poses, contact_results, query_object   (the plant's and the scene graph's).
+    camera.color_image, camera.depth_image, camera.label_image   the wrist camera (RgbdSensor).
+
+The scenario is a dataclass loaded with Drake's `yaml_load_typed`, in the style of Drake's
+hardware_sim example; every number that is a choice (time step, contact model, gains, camera) lives in
+the YAML files under diagrams/.
+"""
+
+
+
+import dataclasses
+import math
+import pathlib
+
+import numpy as np
+from pydrake.common.yaml import yaml_load_typed
+from pydrake.geometry import (
+    MakeRenderEngineVtk,
+    RenderEngineVtkParams,
+    SceneGraph,
+)
+from pydrake.math import RigidTransform, RollPitchYaw
+from pydrake.multibody.parsing import ModelDirective, ModelDirectives, Parser, ProcessModelDirectives
+from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlant, MultibodyPlantConfig
+from pydrake.multibody.tree import ModelInstanceIndex, PdControllerGains
+from pydrake.systems.framework import Diagram, DiagramBuilder
+from pydrake.systems.sensors import CameraConfig, RgbdSensor
+
+from drake_grasp import arm
+from drake_grasp.contact import ContactParameters
+from drake_grasp.control.gravity_compensation import GravityCompensation
+from drake_grasp.control.hand_controller import HandController, HandControllerParams, SetHandActuatorGains
+from drake_grasp.objects import AddObject, ObjectSpec, resolve_object
+from drake_grasp.paths import DIAGRAMS_DIR, RegisterPackage
+
+RENDERER_NAME = "vtk"
+
+
+@dataclasses.dataclass
+class ObjectPlacement:
+    """Which object, and where it rests on the table.
+
+    Attributes:
+        name: a catalogue name (e.g. "soccer_ball"), a primitive ("sphere:0.12", "cube:0.08",
+            "cylinder:0.1x0.3") or a mesh file path.
+        x, y: position of the object's centre on the table, world frame, m.
+        yaw_deg: rotation about the vertical from the object's nominal resting pose, degrees.
+    """
+
+    name: str = "soccer_ball"
+    x: float = 0.55
+    y: float = 0.0
+    yaw_deg: float = 0.0
+
+
+@dataclasses.dataclass
+class ArmParams:
+    """The WAM's joint PD actuators (implicit in the plant) and feed-forward gravity compensation."""
+
+    kp: list[float] = dataclasses.field(default_factory=lambda: [800.0, 800.0, 400.0, 400.0, 60.0, 60.0, 30.0])
+    kd: list[float] = dataclasses.field(default_factory=lambda: [80.0, 80.0, 40.0, 40.0, 4.0, 4.0, 2.0])
+    gravity_compensation: bool = True
+
+
+@dataclasses.dataclass
+class Scenario:
+    """Everything that makes one station. Load with `load_scenario`."""
+
+    plant_config: MultibodyPlantConfig = dataclasses.field(default_factory=MultibodyPlantConfig)
+    directives: list[ModelDirective] = dataclasses.field(default_factory=list)
+    object: ObjectPlacement = dataclasses.field(default_factory=ObjectPlacement)
+    contact: ContactParameters = dataclasses.field(default_factory=ContactParameters)
+    camera: CameraConfig = dataclasses.field(default_factory=CameraConfig)
+    hand: HandControllerParams = dataclasses.field(default_factory=HandControllerParams)
+    arm: ArmParams = dataclasses.field(default_factory=ArmParams)
+
+
+DEFAULT_SCENARIO_FILE = DIAGRAMS_DIR / "station.scenarios.yaml"
+
+
+def load_scenario(filename: str | pathlib.Path = DEFAULT_SCENARIO_FILE, scenario_name: str = "default") -> Scenario:
+    """Loads the scenario `scenario_name` from a YAML file of named scenarios.
+
+    Raises:
+        ValueError: (one line) if the file cannot be read or does not match the Scenario schema.
+    """
+    filename = pathlib.Path(filename)
+    try:
+        text = filename.read_text()
+    except OSError as e:
+        raise ValueError(f"{filename}: cannot read scenario file ({e.strerror})") from None
+    try:
+        scenario = yaml_load_typed(schema=Scenario, data=text, child_name=scenario_name,
+                                   defaults=Scenario())
+    except Exception as e:  # yaml_load_typed raises RuntimeError / yaml errors with multi-line text
+        first_line = str(e).strip().splitlines()[0] if str(e).strip() else type(e).__name__
+        raise ValueError(f"{filename}: scenario '{scenario_name}' is malformed: {first_line}") from None
+    validate_scenario(scenario)
+    return scenario
+
+
+def validate_scenario(scenario: Scenario) -> None:
+    """Raises ValueError (one line) naming the first out-of-range number in `scenario`."""
+    config = scenario.plant_config
+    if not (math.isfinite(config.time_step) and 0 < config.time_step <= 0.05):
+        raise ValueError(f"plant_config.time_step must be in (0, 0.05] s, got {config.time_step}")
+    placement = scenario.object
+    for name in ("x", "y", "yaw_deg"):
+        if not math.isfinite(getattr(placement, name)):
+            raise ValueError(f"object.{name} must be a finite number, got {getattr(placement, name)}")
+    if len(scenario.arm.kp) != arm.NUM_JOINTS or len(scenario.arm.kd) != arm.NUM_JOINTS:
+        raise ValueError(f"arm.kp and arm.kd need {arm.NUM_JOINTS} gains each")
+    contact = scenario.contact
+    if not (contact.friction >= 0 and math.isfinite(contact.friction)):
+        raise ValueError(f"contact.friction must be >= 0, got {contact.friction}")
+    if not (contact.hydroelastic_modulus > 0 and math.isfinite(contact.hydroelastic_modulus)):
+        raise ValueError(f"contact.hydroelastic_modulus must be > 0 Pa, got {contact.hydroelastic_modulus}")
+
+
+@dataclasses.dataclass
+class Station:
+    """A built station: the Diagram and handles to what is inside it."""
+
+    diagram: Diagram
+    plant: MultibodyPlant
+    scene_graph: SceneGraph
+    wam: ModelInstanceIndex
+    hand: ModelInstanceIndex
+    object_instance: ModelInstanceIndex
+    object_spec: ObjectSpec
+    hand_controller: HandController
+    scenario: Scenario
+
+    def X_WO_nominal(self) -> RigidTransform:
+        """The object's resting pose on the table from the scenario, world frame."""
+        return object_rest_pose(self.object_spec, self.scenario.object)
+
+
+def object_rest_pose(spec: ObjectSpec, placement: ObjectPlacement) -> RigidTransform:
+    """Pose X_WO of an object resting on the table (top at z = 0) at the placement."""
+    R_WO = RollPitchYaw(0, 0, math.radians(placement.yaw_deg)).ToRotationMatrix() @ spec.R_TO
+    return RigidTransform(R_WO, [placement.x, placement.y, spec.rest_height])
+
+
+def MakeStation(scenario: Scenario, object_spec: ObjectSpec | None = None, *, camera: bool = True) -> Station:
+    """Builds the station Diagram for `scenario`.
+
+    Args:
+        scenario: the scenario.
+        object_spec: the object, when already resolved (else from scenario.object.name).
+        camera: add the wrist RgbdSensor (and a VTK renderer).
+    """
+    builder = DiagramBuilder()
+    plant, scene_graph = AddMultibodyPlant(scenario.plant_config, builder)
+    parser = RegisterPackage(Parser(plant))
+    ProcessModelDirectives(ModelDirectives(directives=scenario.directives), parser)
+    wam = plant.GetModelInstanceByName("wam")
+    hand = plant.GetModelInstanceByName("hand")
+
+    spec = object_spec or resolve_object(scenario.object.name)
+    object_instance = AddObject(plant, spec, scenario.contact)
+    (object_body_index,) = plant.GetBodyIndices(object_instance)
+    object_body = plant.get_body(object_body_index)
+    plant.SetDefaultFloatingBaseBodyPose(object_body, object_rest_pose(spec, scenario.object))
+
+    for i, name in enumerate(arm.JOINT_NAMES):
+        actuator = plant.GetJointActuatorByName(name, wam)
+        actuator.set_controller_gains(PdControllerGains(p=scenario.arm.kp[i], d=scenario.arm.kd[i]))
+    SetHandActuatorGains(plant, hand, scenario.hand)
+    plant.Finalize()
+
+    # The WAM: implicit PD in the plant + feed-forward gravity compensation.
+    builder.ExportInput(plant.get_desired_state_input_port(wam), "wam.desired_state")
+    if scenario.arm.gravity_compensation:
+        gravity = builder.AddNamedSystem("wam_gravity_compensation", GravityCompensation(plant, wam))
+        builder.Connect(plant.get_state_output_port(), gravity.get_input_port())
+        builder.Connect(gravity.get_output_port(), plant.get_actuation_input_port(wam))
+
+    # The hand.
+    hand_params = dataclasses.replace(scenario.hand, period=scenario.plant_config.time_step) \
+        if scenario.plant_config.time_step > 0 else scenario.hand
+    controller = builder.AddNamedSystem("hand_controller", HandController(plant, hand, hand_params))
+    builder.Connect(plant.get_state_output_port(hand), controller.GetInputPort("hand_state"))
+    builder.Connect(plant.get_net_actuation_output_port(hand), controller.GetInputPort("hand_net_actuation"))
+    builder.Connect(controller.GetOutputPort("hand_desired_state"), plant.get_desired_state_input_port(hand))
+    builder.ExportInput(controller.GetInputPort("command"), "hand.command")
+    builder.ExportOutput(controller.GetOutputPort("finger_status"), "hand.finger_status")
+
+    builder.ExportOutput(plant.get_state_output_port(wam), "wam.state")
+    builder.ExportOutput(plant.get_state_output_port(hand), "hand.state")
+    builder.ExportOutput(plant.get_state_output_port(object_instance), "object.state")
+    builder.ExportOutput(plant.get_state_output_port(), "plant.state")
+    builder.ExportOutput(plant.get_body_poses_output_port(), "body_poses")
+    builder.ExportOutput(plant.get_contact_results_output_port(), "contact_results")
+    builder.ExportOutput(scene_graph.get_query_output_port(), "query_object")
+
+    if camera:
+        AddWristCamera(builder, plant, scene_graph, scenario.camera)
+
+    diagram = builder.Build()
+    diagram.set_name("station")
+    return Station(diagram=diagram, plant=plant, scene_graph=scene_graph, wam=wam, hand=hand,
+                   object_instance=object_instance, object_spec=spec, hand_controller=controller,
+                   scenario=scenario)
+
+
+def AddWristCamera(builder: DiagramBuilder, plant: MultibodyPlant, scene_graph: SceneGraph,
+                   config: CameraConfig) -> RgbdSensor:
+    """Adds the wrist RgbdSensor, mounted at `config.X_PB` relative to the hand's `wrist_camera` frame.
+
+    The sensor renders on demand (when an image port is evaluated), so a diagram that never asks
+    for images pays nothing for the camera.
+    """
+    if not scene_graph.HasRenderer(RENDERER_NAME):
+        scene_graph.AddRenderer(RENDERER_NAME, MakeRenderEngineVtk(RenderEngineVtkParams()))
+    config = dataclasses.replace(config, renderer_name=RENDERER_NAME)
+    color_camera, depth_camera = config.MakeCameras()
+    mount = plant.GetFrameByName("wrist_camera")
+    X_BodyMount = mount.GetFixedPoseInBodyFrame()
+    X_MountSensor = config.X_PB.GetDeterministicValue()
+    sensor = builder.AddNamedSystem(
+        "wrist_camera",
+        RgbdSensor(parent_id=plant.GetBodyFrameIdOrThrow(mount.body().index()),
+                   X_PB=X_BodyMount @ X_MountSensor, color_camera=color_camera, depth_camera=depth_camera),
+    )
+    builder.Connect(scene_graph.get_query_output_port(), sensor.query_object_input_port())
+    builder.ExportOutput(sensor.color_image_output_port(), "camera.color_image")
+    builder.ExportOutput(sensor.depth_image_32F_output_port(), "camera.depth_image")
+    builder.ExportOutput(sensor.label_image_output_port(), "camera.label_image")
+    builder.ExportOutput(sensor.body_pose_in_world_output_port(), "camera.X_WC")
+    return sensor
