@@ -43,6 +43,7 @@ class DemoResult:
     lift: float  # how far the object rose above its resting height at the end
     slip_distance: float  # object position change in the palm frame during the hold
     slip_angle: float  # object orientation change in the palm frame during the hold
+    hold_time: float
     breakaway: list[bool]
     breakaway_angles: list[float]
     final_finger_angles: list[float]  # proximal 1..3, distal 1..3
@@ -54,7 +55,7 @@ class DemoResult:
         angles = ", ".join("-" if math.isnan(a) else f"{math.degrees(a):.0f}" for a in self.breakaway_angles)
         return (
             f"{self.object_name} ({self.mode} mode): {verdict}; lifted {self.lift * 100:.1f} cm; "
-            f"slip over the {HOLD_TIME:.0f} s hold {self.slip_distance * 1000:.2f} mm, "
+            f"slip over the {self.hold_time:.0f} s hold {self.slip_distance * 1000:.2f} mm, "
             f"{math.degrees(self.slip_angle):.2f} deg; breakaway at [{angles}] deg; "
             f"{self.sim_time:.1f} s simulated in {self.wall_time:.1f} s "
             f"({self.sim_time / max(self.wall_time, 1e-9):.1f}x real time)"
@@ -95,8 +96,16 @@ def _half_height(X_WO: RigidTransform, spec: ObjectSpec) -> float:
 
 
 def run_demo(scenario: Scenario, mode: ComplianceMode | None = None, replay_html: str | None = None,
-             object_spec: ObjectSpec | None = None) -> DemoResult:
-    """Builds the station for `scenario`, runs the pick-up, and judges it."""
+             object_spec: ObjectSpec | None = None, hold_time: float = HOLD_TIME) -> DemoResult:
+    """Builds the station for `scenario`, runs the pick-up, and judges it.
+
+    Args:
+        scenario: the station's scenario (its object placement says what to pick up).
+        mode: the compliance mode (default: `default_mode` of the object).
+        replay_html: if given, write a Meshcat replay there.
+        object_spec: the object, if already resolved.
+        hold_time: how long to hold after the lift, s (the paper's protocol: 10 s).
+    """
     station = MakeStation(scenario, object_spec, camera=False)
     spec = station.object_spec
     mode = mode or default_mode(spec)
@@ -117,7 +126,7 @@ def run_demo(scenario: Scenario, mode: ComplianceMode | None = None, replay_html
     t_descend, t_close = 0.5, 2.0
     t_lift = t_close + 1.8
     t_hold = t_lift + 1.5
-    t_end = t_hold + HOLD_TIME
+    t_end = t_hold + hold_time
     path = JointPath()
     path.add(0.0, q_pre)
     path.add(t_descend, q_pre)
@@ -179,7 +188,7 @@ def run_demo(scenario: Scenario, mode: ComplianceMode | None = None, replay_html
     held = rise > 0.5 * LIFT_HEIGHT and slip_distance < 0.01 and slip_angle < math.radians(10)
     return DemoResult(
         object_name=spec.name, mode=mode.name.lower(), held=bool(held), lift=float(rise),
-        slip_distance=slip_distance, slip_angle=slip_angle,
+        slip_distance=slip_distance, slip_angle=slip_angle, hold_time=hold_time,
         breakaway=[bool(b > 0.5) for b in status[:3]], breakaway_angles=[float(a) for a in status[3:]],
         final_finger_angles=[float(a) for a in q_hand[2:8]], sim_time=t_end, wall_time=wall,
     )

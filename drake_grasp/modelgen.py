@@ -26,9 +26,9 @@ from drake_grasp.paths import MODELS_DIR
 HAND_SDF = MODELS_DIR / "barrett_hand" / "bh280.sdf"
 WAM_SDF = MODELS_DIR / "wam" / "wam7.sdf"
 
-# Soft compliant-hydroelastic fingers and palm, as on the rubber-padded hand (assumed numbers; the
-# object's own compliance is set per scenario). mu = 0.5 as DESIGN.md §5 assumes for hand-object.
-HAND_HYDROELASTIC_MODULUS = 5.0e6  # Pa
+# Rigid-hydroelastic fingers and palm: the objects carry the compliance of the contact (their
+# modulus is set per scenario), which is also the cheaper pairing for Drake's hydroelastic contact.
+# mu = 0.5 as DESIGN.md §5 assumes for hand-object.
 HAND_HUNT_CROSSLEY_DISSIPATION = 1.0  # s/m
 HAND_FRICTION = 0.5
 HAND_RESOLUTION_HINT = 0.01  # m; only used by the palm cylinder.
@@ -92,8 +92,7 @@ def _hand_proximity(shape: str) -> str:
         else ""
     )
     return (
-        "<drake:proximity_properties><drake:compliant_hydroelastic/>"
-        f"<drake:hydroelastic_modulus>{HAND_HYDROELASTIC_MODULUS:.6g}</drake:hydroelastic_modulus>"
+        "<drake:proximity_properties><drake:rigid_hydroelastic/>"
         f"{hint}"
         f"<drake:hunt_crossley_dissipation>{HAND_HUNT_CROSSLEY_DISSIPATION}"
         "</drake:hunt_crossley_dissipation>"

@@ -22,6 +22,7 @@ the YAML files under diagrams/.
 
 
 
+import copy
 import dataclasses
 import math
 import pathlib
@@ -227,7 +228,8 @@ def AddWristCamera(builder: DiagramBuilder, plant: MultibodyPlant, scene_graph: 
     """
     if not scene_graph.HasRenderer(RENDERER_NAME):
         scene_graph.AddRenderer(RENDERER_NAME, MakeRenderEngineVtk(RenderEngineVtkParams()))
-    config = dataclasses.replace(config, renderer_name=RENDERER_NAME)
+    config = copy.deepcopy(config)
+    config.renderer_name = RENDERER_NAME
     color_camera, depth_camera = config.MakeCameras()
     mount = plant.GetFrameByName("wrist_camera")
     X_BodyMount = mount.GetFixedPoseInBodyFrame()

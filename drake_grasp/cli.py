@@ -1,0 +1,138 @@
+"""The `drake-grasp` command.
+
+Every subcommand prints a one-line summary (or one JSON object with --json) and takes --seed and
+--out. Bad input (an unknown object, a broken mesh, a malformed scenario, a number out of range) is
+reported as one line on stderr with exit code 2, never a traceback.
+"""
+
+import argparse
+import dataclasses
+import json
+import math
+import pathlib
+import sys
+
+from drake_grasp.hand import ComplianceMode
+
+
+class UsageError(ValueError):
+    """Bad input from the command line: reported in one line, exit code 2."""
+
+
+def _parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="drake-grasp",
+        description="Compliance-centric grasping (BarrettHand on a Barrett WAM) in Drake.",
+    )
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)
+
+    demo = sub.add_parser(
+        "demo",
+        help="pick an object up with the hand's compliance (ground-truth pose)",
+        description="The arm brings the open hand above the object (its true pose), descends, closes "
+        "the fingers (torque close with breakaway), lifts 10 cm and holds 10 s; prints whether the "
+        "object was held and how much it slipped in the hand.",
+    )
+    demo.add_argument("--object", required=True, metavar="NAME|PATH",
+                      help="a catalogue object (e.g. soccer_ball, bottle_case), a primitive "
+                      "(sphere:0.12, cube:0.08, cylinder:0.1x0.3) or a mesh file (OBJ, STL, PLY)")
+    demo.add_argument("--mode", choices=[m.name.lower() for m in ComplianceMode],
+                      help="compliance mode (default: spherical for round objects, else cylindrical)")
+    _common(demo)
+    demo.add_argument("--replay", metavar="FILE.html",
+                      help="write a Meshcat replay that opens in a browser, no server needed")
+    demo.set_defaults(run=_run_demo)
+    return parser
+
+
+def _common(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
+    p.add_argument("--out", metavar="DIR", help="directory for result files")
+    p.add_argument("--json", action="store_true", help="print one JSON object instead of a line")
+    p.add_argument("--scenario", metavar="FILE.yaml", help="scenario file (default: diagrams/station.scenarios.yaml)")
+    p.add_argument("--scenario-name", default="default", help="scenario in that file (default: default)")
+
+
+def _load_scenario(args):
+    from drake_grasp.station import DEFAULT_SCENARIO_FILE, load_scenario
+
+    return load_scenario(args.scenario or DEFAULT_SCENARIO_FILE, args.scenario_name)
+
+
+def _check_seed(seed: int) -> None:
+    if not 0 <= seed < 2**32:
+        raise UsageError(f"--seed must be in [0, 2^32), got {seed}")
+
+
+def _writable_file(path: str, suffix: str) -> pathlib.Path:
+    p = pathlib.Path(path)
+    if p.suffix.lower() != suffix:
+        raise UsageError(f"{path}: expected a {suffix} file name")
+    if not p.parent.exists():
+        raise UsageError(f"{path}: directory {p.parent} does not exist")
+    return p
+
+
+def _run_demo(args) -> int:
+    from drake_grasp.demo import run_demo
+    from drake_grasp.objects import resolve_object
+
+    _check_seed(args.seed)
+    replay = _writable_file(args.replay, ".html") if args.replay else None
+    scenario = _load_scenario(args)
+    spec = resolve_object(args.object)
+    scenario.object.name = args.object
+    mode = ComplianceMode.parse(args.mode) if args.mode else None
+    result = run_demo(scenario, mode=mode, replay_html=str(replay) if replay else None, object_spec=spec)
+    record = dataclasses.asdict(result)
+    if args.out:
+        out = pathlib.Path(args.out)
+        out.mkdir(parents=True, exist_ok=True)
+        _write_json_atomically(out / "demo.json", record)
+    if args.json:
+        print(json.dumps(_jsonable(record)))
+    else:
+        print(result.summary())
+        if replay:
+            print(f"replay: {replay}")
+    return 0
+
+
+def _jsonable(value):
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    if isinstance(value, dict):
+        return {k: _jsonable(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_jsonable(v) for v in value]
+    return value
+
+
+def _write_json_atomically(path: pathlib.Path, record: dict) -> None:
+    tmp = path.with_suffix(path.suffix + ".tmp")
+    tmp.write_text(json.dumps(_jsonable(record), indent=2) + "\n")
+    tmp.replace(path)
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Entry point of the `drake-grasp` console script; returns the exit code."""
+    args = _parser().parse_args(argv)
+    try:
+        return args.run(args)
+    except (UsageError, ValueError, FileNotFoundError) as e:
+        # ObjectError and scenario errors are ValueErrors with one-line messages.
+        message = str(e).strip().splitlines()[0] if str(e).strip() else type(e).__name__
+        print(f"drake-grasp {args.command}: error: {message}", file=sys.stderr)
+        return 2
+    except RuntimeError as e:
+        # A run that could not be carried out (e.g. the arm cannot reach the object): one line, exit 1.
+        message = str(e).strip().splitlines()[0] if str(e).strip() else type(e).__name__
+        print(f"drake-grasp {args.command}: failed: {message}", file=sys.stderr)
+        return 1
+    except KeyboardInterrupt:
+        print(f"drake-grasp {args.command}: interrupted", file=sys.stderr)
+        return 130
+
+
+if __name__ == "__main__":
+    sys.exit(main())
