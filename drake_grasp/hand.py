@@ -66,6 +66,9 @@ BASE_RADIUS = 0.0445  # hand base is a cylinder of about 89 mm diameter.
 PALM_HEIGHT = 0.080  # palm surface above the hand base frame.
 FINGER_WIDTH = 0.025  # width of a finger link, across the closing plane (assumed).
 PROXIMAL_THICKNESS = 0.020  # thickness of the proximal link, in the closing plane (assumed).
+# The open finger's inner face is flush with the palm (assumed; the real links are rounded about the
+# joint axis): the proximal box's inner face is PALM_HEIGHT - DW = 4.6 mm off the D-H line.
+PROXIMAL_BEHIND_AXIS = 0.005  # the proximal box starts this far behind the joint axis (assumed).
 # The distal pad surface holds the fingertip frame, D3 from the D-H line: thickness 2*D3.
 DISTAL_THICKNESS = 2.0 * D3
 

@@ -187,9 +187,11 @@ def hand_sdf() -> str:
                 "<velocity>6.3</velocity></limit><dynamics><damping>0.01</damping></dynamics>"
                 "</axis></joint>"
             )
-        # Proximal link: a box along +x from just behind the proximal axis to the distal axis.
-        prox_size = (prox_len + 0.012, hand.FINGER_WIDTH, hand.PROXIMAL_THICKNESS)
-        X_PG = RigidTransform([(prox_len - 0.012) / 2, 0, 0])
+        # Proximal link: a box along +x from the proximal axis to the distal axis, its inner (+y)
+        # face flush with the palm surface when the finger is open.
+        prox_size = (prox_len + hand.PROXIMAL_BEHIND_AXIS, hand.FINGER_WIDTH, hand.PROXIMAL_THICKNESS)
+        inner_face = hand.PALM_HEIGHT - hand.DW
+        X_PG = RigidTransform([(prox_len - hand.PROXIMAL_BEHIND_AXIS) / 2, inner_face - hand.PROXIMAL_THICKNESS / 2, 0])
         parts.append(
             f'<link name="{proximal}">{_pose(frames["proximal"], knuckle)}'
             f"{_box_inertia(hand.PROXIMAL_MASS, prox_size)}"
