@@ -165,7 +165,7 @@ def hand_sdf() -> str:
         frames = _hand_link_frames(finger)
         knuckle, proximal, distal = (f"bh_finger_{finger}_{n}" for n in ("knuckle", "proximal", "distal"))
         # Knuckle (spread) link: carries the proximal axis; it sits inside the palm outline.
-        knuckle_size = (hand.A1, hand.FINGER_WIDTH, 0.02)
+        knuckle_size = (hand.A1, hand.FINGER_WIDTH, 0.02)  # knuckle frame: z along the spread axis
         parts.append(
             f'<link name="{knuckle}">{_pose(frames["knuckle"], "bh_base")}'
             f"{_box_inertia(hand.KNUCKLE_MASS, knuckle_size)}"
@@ -189,7 +189,8 @@ def hand_sdf() -> str:
             )
         # Proximal link: a box along +x from the proximal axis to the distal axis, its inner (+y)
         # face flush with the palm surface when the finger is open.
-        prox_size = (prox_len + hand.PROXIMAL_BEHIND_AXIS, hand.FINGER_WIDTH, hand.PROXIMAL_THICKNESS)
+        # Link frames (D-H): x along the link, y toward the inner (grasping) side, z along the joint axis.
+        prox_size = (prox_len + hand.PROXIMAL_BEHIND_AXIS, hand.PROXIMAL_THICKNESS, hand.FINGER_WIDTH)
         inner_face = hand.PALM_HEIGHT - hand.DW
         X_PG = RigidTransform([(prox_len - hand.PROXIMAL_BEHIND_AXIS) / 2, inner_face - hand.PROXIMAL_THICKNESS / 2, 0])
         parts.append(
@@ -207,7 +208,7 @@ def hand_sdf() -> str:
             "</axis></joint>"
         )
         # Distal link: a box along +x whose inner (+y) face holds the fingertip frame.
-        dist_size = (dist_len, hand.FINGER_WIDTH, hand.DISTAL_THICKNESS)
+        dist_size = (dist_len, hand.DISTAL_THICKNESS, hand.FINGER_WIDTH)
         X_DG = RigidTransform([dist_len / 2, 0, 0])
         parts.append(
             f'<link name="{distal}">{_pose(frames["distal"], proximal)}'

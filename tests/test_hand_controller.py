@@ -186,7 +186,7 @@ def test_closing_on_a_fixed_cylinder_stops_proximal_links_and_wraps_distal_links
     # A cylinder along x over the palm, between F1/F2 (-y side) and F3 (+y side), low and wide
     # enough that the proximal links meet it first (on a cylinder resting on the palm the bent
     # distal links touch as early as the proximal ones, and nothing is left to wrap).
-    radius, height = 0.055, 0.115
+    radius, height = 0.06, 0.12
     cylinder = (f"0 0 {height} 0 {math.pi / 2} 0",
                 f"<cylinder><radius>{radius}</radius><length>0.3</length></cylinder>")
     q, status, _, touching = close_hand(ComplianceMode.CYLINDRICAL, [cylinder])
