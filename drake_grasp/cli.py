@@ -126,7 +126,7 @@ def _run_fig4(args) -> int:
     rows = fig4.run_fig4(config, out, workers=args.workers)
     summaries = fig4.summarise(rows)
     figures = fig4.plot(summaries, out)
-    lines = fig4.summary_lines(summaries)
+    lines = fig4.summary_lines(summaries, rows)
     wall = time.perf_counter() - start
     if args.json:
         print(json.dumps({

@@ -1,7 +1,9 @@
 """Fig. 4's sweep: a small real run, its files, and resuming after an interruption."""
 
 import csv
+import io
 
+import numpy as np
 import pytest
 
 from drake_grasp import cli
@@ -29,7 +31,10 @@ def test_small_sweep_writes_rows_and_figures_and_resumes(tmp_path):
     csv_path = tmp_path / "fig4.csv"
     lines = csv_path.read_text().splitlines(keepends=True)
     csv_path.write_text("".join(lines[:-6]) + lines[-6][:10])
-    again = fig4.run_fig4(config, tmp_path, workers=1)
+    progress = io.StringIO()
+    again = fig4.run_fig4(config, tmp_path, workers=1, progress=progress)
+    # Only the interrupted (shape, size) task is computed again.
+    assert "resuming, 8/9" in progress.getvalue()
     assert len(again) == len(rows)
     with open(csv_path) as f:
         keys = [(r["shape"], r["size"], r["axis"], r["error"]) for r in csv.DictReader(f)]
@@ -44,6 +49,7 @@ def test_results_table_skips_known_keys_and_drops_a_torn_line(tmp_path):
     table = ResultsTable(path, ["a", "b", "value"], ["a", "b"])
     assert table.append([{"a": "x", "b": 0.1, "value": 1.0}, {"a": "x", "b": 0.2, "value": 2.0}]) == 2
     assert table.append([{"a": "x", "b": 0.1, "value": 9.0}]) == 0
+    assert ("x", np.float64(0.2)) in table  # numpy scalars key like floats
     with open(path, "a") as f:
         f.write("x,0.3,3.")  # torn
     table = ResultsTable(path, ["a", "b", "value"], ["a", "b"])

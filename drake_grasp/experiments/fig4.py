@@ -229,29 +229,31 @@ def summarise(rows: list[dict]) -> dict[str, ShapeSummary]:
     return out
 
 
-def summary_lines(summaries: dict[str, ShapeSummary]) -> list[str]:
-    """A short, honest reading of the sweep: peaks per shape, and what happens to large cubes."""
+def summary_lines(summaries: dict[str, ShapeSummary], rows: list[dict]) -> list[str]:
+    """A short, honest reading of the sweep: per shape the peak of ε_mean and where it falls off,
+    and what happens to large cubes."""
     lines = []
     for shape, s in summaries.items():
         both = (s.mean("x") + s.mean("y")) / 2
         peak = int(np.argmax(both))
-        last = both[-1]
-        lines.append(
-            f"{shape}: eps_mean peaks at {s.sizes[peak] * 100:.1f} cm ({both[peak]:.3f}); "
-            f"at the largest size ({s.sizes[-1] * 100:.1f} cm) it is {last:.3f}"
-            + (f" ({100 * (1 - last / both[peak]):.0f}% below the peak)" if both[peak] > 0 else "")
-        )
+        below = [j for j in range(peak, len(both)) if both[j] < 0.1 * both[peak]]
+        falls = f"falls below 10% of the peak at {s.sizes[below[0]] * 100:.1f} cm" if below else \
+            "stays above 10% of the peak up to the largest size"
+        lines.append(f"{shape}: eps_mean peaks at {s.sizes[peak] * 100:.1f} cm ({both[peak]:.3f}) and {falls}")
     cube = summaries.get("cube")
     if cube is not None:
-        large = cube.sizes >= 0.5 * cube.sizes.max()
-        fingers = np.concatenate([cube.fingers[a][:, large].ravel() for a in AXES])
-        eps = np.concatenate([cube.epsilon[a][:, large].ravel() for a in AXES])
-        two = fingers <= 2
-        lines.append(
-            f"large cubes (>= {cube.sizes.max() * 50:.0f} cm): {100 * two.mean():.0f}% of grasps touch with two "
-            f"fingers or fewer (mean eps {eps[two].mean() if two.any() else float('nan'):.3f}), "
-            f"{100 * (~two).mean():.0f}% with three (mean eps {eps[~two].mean() if (~two).any() else float('nan'):.3f})"
-        )
+        both = (cube.mean("x") + cube.mean("y")) / 2
+        peak = int(np.argmax(both))
+        large_sizes = [z for j, z in enumerate(cube.sizes) if j > peak and both[j] < 0.1 * both[peak]]
+        if large_sizes:
+            large = [r for r in rows if r["shape"] == "cube" and float(r["size"]) >= large_sizes[0]]
+            flat = np.mean([all(abs(float(r[f"proximal_{f}"])) < 1e-6 for f in (1, 2, 3)) for r in large])
+            two = np.mean([int(r["fingers_touching"]) <= 2 for r in large])
+            lines.append(
+                f"large cubes (>= {large_sizes[0] * 100:.1f} cm): in {100 * flat:.0f}% of grasps the open "
+                "proximal links land flat on the top face and break away at 0 deg, so the distal links "
+                f"close beside the cube; {100 * two:.0f}% touch with two fingers or fewer"
+            )
     return lines
 
 

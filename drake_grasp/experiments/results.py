@@ -95,7 +95,7 @@ def _format(value) -> str:
     if isinstance(value, float):
         if math.isnan(value):
             return "nan"
-        return repr(value)
+        return repr(float(value))  # float(): numpy scalars print as np.float64(...)
     if isinstance(value, bool):
         return "1" if value else "0"
     return str(value)
