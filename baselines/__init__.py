@@ -1,0 +1,1 @@
+"""Baselines the compliance-centric algorithm is compared with."""

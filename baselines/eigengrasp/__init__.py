@@ -1,0 +1,1 @@
+"""GraspIt!'s Eigengrasp simulated-annealing planner, reimplemented (DESIGN.md §7)."""
