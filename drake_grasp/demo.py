@@ -163,6 +163,8 @@ def run_demo(scenario: Scenario, mode: ComplianceMode | None = None, replay_html
         return palm.CalcPoseInWorld(plant_context).inverse() @ object_body.EvalPoseInWorld(plant_context)
 
     if meshcat is not None:
+        p_WO = X_WO.translation()
+        meshcat.SetCameraPose(p_WO + [0.45, -0.75, 0.45], p_WO)
         meshcat.StartRecording()
     wall_start = time.perf_counter()
     simulator.AdvanceTo(t_hold)

@@ -135,3 +135,18 @@ def test_hand_joint_names_ranges_and_masses():
     finger_mass = sum(plant.GetBodyByName(f"bh_finger_1_{p}").default_mass() for p in ("knuckle", "proximal", "distal"))
     assert finger_mass == pytest.approx(0.244, abs=1e-3)  # jhu per-link masses: 0.141 + 0.062 + 0.041
     assert plant.CalcTotalMass(plant.CreateDefaultContext()) == pytest.approx(0.664 + 3 * 0.244, abs=1e-3)
+
+
+@pytest.mark.parametrize("path", [modelgen.HAND_SDF, modelgen.WAM_SDF, modelgen.MODELS_DIR / "table" / "table.sdf"])
+def test_every_model_loads_finalizes_and_simulates_without_warnings(path, caplog):
+    import logging
+
+    caplog.set_level(logging.WARNING, logger="drake")
+    builder, plant, model = _load(path)
+    plant.Finalize()
+    diagram = builder.Build()
+    simulator = Simulator(diagram)
+    simulator.AdvanceTo(0.1)
+    assert not [r for r in caplog.records if r.levelno >= logging.WARNING], caplog.text
+    q = plant.GetPositions(plant.GetMyContextFromRoot(simulator.get_context()))
+    assert np.all(np.isfinite(q))
