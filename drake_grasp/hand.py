@@ -108,6 +108,7 @@ class HandAction(enum.IntEnum):
     OPEN = 0  # drive every finger to 0 and re-engage the clutches.
     CLOSE = 1  # torque close with breakaway.
     HOLD = 2  # keep the fingers where they are (and keep squeezing if they squeeze).
+    PRESHAPE = 3  # move each finger (coupled, clutch engaged) to a given proximal angle and stop.
 
 
 @dataclasses.dataclass(frozen=True)

@@ -8,6 +8,7 @@ visual primitives) connects to names, not to the plant's internals:
 Input ports:
     wam.desired_state   [q (7), v (7)] the WAM tracks, rad and rad/s.
     hand.command        [spread target (rad), HandAction].
+    hand.finger_preshape   proximal angle per finger for HandAction.PRESHAPE (rad); else unused.
 Output ports:
     wam.state, hand.state          the model instances' [q; v].
     hand.finger_status             broken_away (3), breakaway angle (3, rad).
@@ -199,6 +200,7 @@ def MakeStation(scenario: Scenario, object_spec: ObjectSpec | None = None, *, ca
     builder.Connect(plant.get_net_actuation_output_port(hand), controller.GetInputPort("hand_net_actuation"))
     builder.Connect(controller.GetOutputPort("hand_desired_state"), plant.get_desired_state_input_port(hand))
     builder.ExportInput(controller.GetInputPort("command"), "hand.command")
+    builder.ExportInput(controller.GetInputPort("finger_preshape"), "hand.finger_preshape")
     builder.ExportOutput(controller.GetOutputPort("finger_status"), "hand.finger_status")
 
     builder.ExportOutput(plant.get_state_output_port(wam), "wam.state")

@@ -207,3 +207,19 @@ def test_on_an_asymmetric_object_the_fingers_stop_at_different_angles():
     q, status, _, _ = close_hand(ComplianceMode.CYLINDRICAL, [box])
     assert q[4] < q[2] - math.radians(10) and q[4] < q[3] - math.radians(10)
     assert abs(q[2] - q[3]) < math.radians(3)  # F1 and F2 are symmetric about the box
+
+
+def test_preshape_moves_coupled_fingers_to_their_targets_and_back():
+    params = HandControllerParams()
+    drive = FingerDrive()
+    target = np.array([0.3, 0.6, 1.0])
+    zero = np.zeros(3)
+    for _ in range(300):
+        drive = advance_fingers(drive, 0.0, HandAction.PRESHAPE, 0.0, drive.proximal, drive.distal, zero,
+                                drive.proximal_rate, drive.distal_rate, params, params.period, preshape=target)
+    np.testing.assert_allclose(drive.proximal, target)
+    np.testing.assert_allclose(drive.distal, target / 3)
+    for _ in range(300):
+        drive = advance_fingers(drive, 0.0, HandAction.PRESHAPE, 0.0, drive.proximal, drive.distal, zero,
+                                drive.proximal_rate, drive.distal_rate, params, params.period, preshape=zero)
+    np.testing.assert_allclose(drive.proximal, 0.0)

@@ -159,6 +159,7 @@ def advance_fingers(
     distal_velocity: np.ndarray,
     params: HandControllerParams,
     dt: float,
+    preshape: np.ndarray | None = None,
 ) -> FingerDrive:
     """One update of the motor and clutch model. Pure: returns a new FingerDrive.
 
@@ -170,6 +171,8 @@ def advance_fingers(
         proximal_measured, distal_measured: joint angles of F1, F2, F3, rad.
         proximal_torque: actuation torque on each proximal joint, N*m (positive closes).
         proximal_velocity, distal_velocity: joint velocities, rad/s.
+        preshape: with HandAction.PRESHAPE, the proximal angle (rad) each finger goes to, the
+            distal following at a third of it (the clutch stays engaged; a blocked finger stalls).
         params: drive parameters.
         dt: time since the previous update, s.
     """
@@ -208,6 +211,17 @@ def advance_fingers(
                     (distal_next[f] + params.distal_lead) / hand.DISTAL_PER_PROXIMAL,
                 )
                 distal[f] = proximal[f] * hand.DISTAL_PER_PROXIMAL
+    elif action == HandAction.PRESHAPE and spread_ready:
+        target = np.clip(np.asarray(preshape, float), *hand.PROXIMAL_LIMITS)
+        for f in range(NUM_FINGERS):
+            if target[f] >= proximal[f]:
+                proximal[f] = min(proximal[f] + w_p * dt, target[f], proximal_next[f] + params.proximal_lead,
+                                  (distal_next[f] + params.distal_lead) / hand.DISTAL_PER_PROXIMAL)
+            else:
+                proximal[f] = max(proximal[f] - w_p * dt, target[f])
+            distal[f] = proximal[f] * hand.DISTAL_PER_PROXIMAL
+        new.broken_away[:] = False
+        new.breakaway_angle[:] = np.nan
     elif action == HandAction.OPEN:
         # Reopen at the closing speeds, distal first back onto the coupled ratio; re-engage the clutch.
         proximal = np.maximum(proximal - w_p * dt, hand.PROXIMAL_LIMITS[0] - params.proximal_lead)
@@ -228,6 +242,8 @@ class HandController(LeafSystem):
 
     Input ports:
         command: [spread target (rad), action (HandAction as a number)].
+        finger_preshape: proximal angle of each finger for HandAction.PRESHAPE, rad (read only then:
+            it may stay unconnected otherwise).
         hand_state: the hand model instance's state [q; v] (plant.get_state_output_port(hand)).
         hand_net_actuation: the hand's applied actuation (plant.get_net_actuation_output_port(hand)).
     Output ports:
@@ -243,6 +259,7 @@ class HandController(LeafSystem):
         num_q = plant.num_positions(hand_instance)
         num_v = plant.num_velocities(hand_instance)
         self.DeclareVectorInputPort("command", 2)
+        self._preshape_port = self.DeclareVectorInputPort("finger_preshape", NUM_FINGERS)
         self._state_port = self.DeclareVectorInputPort("hand_state", num_q + num_v)
         self._actuation_port = self.DeclareVectorInputPort("hand_net_actuation", plant.num_actuators(hand_instance))
         self._drive_index = self.DeclareDiscreteState(FingerDrive().to_vector())
@@ -268,6 +285,7 @@ class HandController(LeafSystem):
         v = self._index.joint_velocities(state)
         drive = FingerDrive.from_vector(context.get_discrete_state(self._drive_index).value())
         action = HandAction(int(round(command[1])))
+        preshape = self._preshape_port.Eval(context) if action == HandAction.PRESHAPE else None
         new = advance_fingers(
             drive,
             spread_target=float(command[0]),
@@ -280,6 +298,7 @@ class HandController(LeafSystem):
             distal_velocity=v[5:8],
             params=self._params,
             dt=self._params.period,
+            preshape=preshape,
         )
         discrete_state.set_value(self._drive_index, new.to_vector())
 

@@ -1,0 +1,199 @@
+"""The three compliant grasps of the paper: a compliance mode plus a hand pose, from an object estimate.
+
+A *compliant grasp* (paper, Sec. 2) = a hand pose (where the palm goes, and from which direction it
+comes) + a compliance mode (the pre-grasp hand shape and torque close with breakaway). The pose is
+computed only from a coarse *estimate* of the object — its centre, its axes and its size along them
+— which the visual primitives provide (or, for oracle trials, the ground truth does). No object
+model and no contact planning: the hand's compliance does the rest.
+
+* **spherical grasp**: spherical mode; the palm centre approaches the object's centre from above
+  until contact (or until it reaches the estimated top).
+* **cylindrical grasp**: cylindrical mode; the hand is centred on the principal axis, its fingers
+  closing perpendicular to it; it approaches perpendicular to the axis, from as high above as the
+  axis allows, until contact.
+* **box grasp**: cylindrical mode; the hand is aligned with the box's axes: it approaches along the
+  box axis closest to the vertical (onto the top face), and its fingers close across the shorter side
+  of that face. A face wider than the fingers' knuckles are apart would catch the open proximal links
+  flat on it (they break away at once and the distal links close beside the box): the palm then stops
+  short of the face, so that the proximal links meet the top edges at about 45 degrees and the distal
+  links wrap down the sides.
+
+All poses are palm poses X_WP (P = ``bh_palm``: the palm centre, z along the palm normal); the
+approach runs along +z_P.
+"""
+
+import dataclasses
+import enum
+import math
+
+import numpy as np
+from pydrake.math import RigidTransform, RotationMatrix
+
+from drake_grasp import hand
+from drake_grasp.hand import ComplianceMode
+
+# Height of the finger knuckles' axes behind the palm surface, m (hand.PALM_HEIGHT - hand.DW).
+_KNUCKLE_BEHIND_PALM = hand.PALM_HEIGHT - hand.DW
+# Distance of the proximal axes from the palm centre across the closing direction, m.
+_KNUCKLE_SPACING_HALF = hand.A1
+
+
+class GraspType(enum.Enum):
+    SPHERICAL = "spherical"
+    CYLINDRICAL = "cylindrical"
+    BOX = "box"
+
+    @classmethod
+    def parse(cls, name: str) -> "GraspType":
+        try:
+            return cls(name.strip().lower())
+        except ValueError:
+            raise ValueError(f"unknown grasp '{name}' (choose from spherical, cylindrical, box)") from None
+
+
+@dataclasses.dataclass(frozen=True)
+class ObjectEstimate:
+    """What a grasp needs to know about an object, in the world frame W.
+
+    Attributes:
+        center: the object's centre, m.
+        R_WB: the object's axes (columns), e.g. its principal axes or a box's edges.
+        size: the object's extent along each of those axes, m.
+        principal_axis: unit vector of the elongation (None for objects with no long axis).
+        source: where the estimate came from ("oracle", "camera").
+    """
+
+    center: np.ndarray
+    R_WB: np.ndarray
+    size: np.ndarray
+    principal_axis: np.ndarray | None = None
+    source: str = "oracle"
+
+    def __post_init__(self):
+        for name in ("center", "R_WB", "size"):
+            value = np.asarray(getattr(self, name), dtype=float)
+            if not np.all(np.isfinite(value)):
+                raise ValueError(f"object estimate: {name} has a non-finite value")
+        if np.any(np.asarray(self.size) <= 0):
+            raise ValueError("object estimate: size must be positive along every axis")
+
+    def half_extent_along(self, direction_W: np.ndarray) -> float:
+        """Half the object's (box) extent along a world direction, m."""
+        d = np.asarray(direction_W, float)
+        return 0.5 * float(np.abs(np.asarray(self.R_WB).T @ d) @ np.asarray(self.size))
+
+
+@dataclasses.dataclass(frozen=True)
+class GraspPlan:
+    """Where the palm goes and how the hand closes.
+
+    Attributes:
+        grasp: the compliant grasp (or None for a planned grasp from another method).
+        spread: the spread angle of F1 and F2, rad (the compliance mode's, or a planner's).
+        X_WP_target: the palm pose at the end of the approach, if nothing is touched first.
+        approach_distance: the palm starts this far back along -z_P from the target, m.
+        stop_on_contact: end the approach early when the hand touches something.
+        finger_preshape: proximal and distal angles (6, rad) to take before the approach (planned grasps).
+    """
+
+    grasp: GraspType | None
+    spread: float
+    X_WP_target: RigidTransform
+    approach_distance: float = 0.12
+    stop_on_contact: bool = True
+    finger_preshape: tuple[float, ...] = (0.0,) * 6
+
+    @property
+    def X_WP_pregrasp(self) -> RigidTransform:
+        z = self.X_WP_target.rotation().col(2)
+        return RigidTransform(self.X_WP_target.rotation(), self.X_WP_target.translation() - self.approach_distance * z)
+
+
+def _palm_rotation(approach_W: np.ndarray, x_hint_W: np.ndarray) -> RotationMatrix:
+    """R_WP with z_P = approach direction and x_P as close to x_hint as possible."""
+    z = np.asarray(approach_W, float)
+    z = z / np.linalg.norm(z)
+    x = np.asarray(x_hint_W, float) - np.dot(x_hint_W, z) * z
+    if np.linalg.norm(x) < 1e-6:
+        x = np.cross(z, [0.0, 1.0, 0.0]) if abs(z[1]) < 0.9 else np.cross(z, [1.0, 0.0, 0.0])
+    x = x / np.linalg.norm(x)
+    return RotationMatrix(np.column_stack([x, np.cross(z, x), z]))
+
+
+_DOWN = np.array([0.0, 0.0, -1.0])
+
+
+def spherical_grasp(estimate: ObjectEstimate) -> GraspPlan:
+    """Spherical mode; the palm centre approaches the object's centre from above."""
+    x_hint = estimate.principal_axis if estimate.principal_axis is not None else np.asarray(estimate.R_WB)[:, 0]
+    R_WP = _palm_rotation(_DOWN, x_hint)
+    top = estimate.half_extent_along(_DOWN)
+    target = np.asarray(estimate.center) + [0.0, 0.0, top]
+    return GraspPlan(GraspType.SPHERICAL, ComplianceMode.SPHERICAL.spread, RigidTransform(R_WP, target))
+
+
+def cylindrical_grasp(estimate: ObjectEstimate) -> GraspPlan:
+    """Cylindrical mode; centred on the principal axis, fingers closing perpendicular to it."""
+    axis = estimate.principal_axis
+    if axis is None:  # no long axis: any horizontal axis of the object will do
+        R = np.asarray(estimate.R_WB)
+        axis = R[:, int(np.argmin(np.abs(R[2, :])))]
+    axis = np.asarray(axis, float) / np.linalg.norm(axis)
+    # The approach direction perpendicular to the axis that points down the most.
+    approach = _DOWN - np.dot(_DOWN, axis) * axis
+    if np.linalg.norm(approach) < 1e-6:  # a vertical axis: come from the side
+        approach = np.cross(axis, [0.0, 1.0, 0.0])
+    approach = approach / np.linalg.norm(approach)
+    R_WP = _palm_rotation(approach, axis)
+    target = np.asarray(estimate.center) - estimate.half_extent_along(approach) * approach
+    return GraspPlan(GraspType.CYLINDRICAL, ComplianceMode.CYLINDRICAL.spread, RigidTransform(R_WP, target))
+
+
+def box_grasp(estimate: ObjectEstimate) -> GraspPlan:
+    """Cylindrical mode, aligned with the box: onto the face that looks up, fingers across its shorter side."""
+    R = np.asarray(estimate.R_WB, float)
+    size = np.asarray(estimate.size, float)
+    up = int(np.argmax(np.abs(R[2, :])))
+    approach = -R[:, up] * np.sign(R[2, up])  # into the top face
+    others = [i for i in range(3) if i != up]
+    long_axis, short_axis = sorted(others, key=lambda i: -size[i])
+    R_WP = _palm_rotation(approach, R[:, long_axis])  # fingers close along the short side
+    half_width = size[short_axis] / 2
+    # Stand off when the face is wider than the knuckles: the proximal links then meet the top
+    # edges at ~45 deg instead of landing flat on the face.
+    standoff = max(0.0, half_width - _KNUCKLE_SPACING_HALF - _KNUCKLE_BEHIND_PALM)
+    target = np.asarray(estimate.center) - (size[up] / 2 + standoff) * approach
+    return GraspPlan(GraspType.BOX, ComplianceMode.CYLINDRICAL.spread, RigidTransform(R_WP, target))
+
+
+COMPLIANT_GRASPS = {
+    GraspType.SPHERICAL: spherical_grasp,
+    GraspType.CYLINDRICAL: cylindrical_grasp,
+    GraspType.BOX: box_grasp,
+}
+
+
+def plan_compliant_grasp(grasp: GraspType | str, estimate: ObjectEstimate) -> GraspPlan:
+    """The compliant grasp of the given type for the estimate."""
+    grasp = GraspType.parse(grasp) if isinstance(grasp, str) else grasp
+    return COMPLIANT_GRASPS[grasp](estimate)
+
+
+def oracle_estimate(X_WO: RigidTransform, spec) -> ObjectEstimate:
+    """The ground-truth estimate of an object (for oracle trials and tests): its axes and extents."""
+    R_WO = X_WO.rotation().matrix()
+    axis = None if spec.principal_axis is None else R_WO @ np.asarray(spec.principal_axis, float)
+    return ObjectEstimate(center=X_WO.translation().copy(), R_WB=R_WO, size=np.asarray(spec.extents, float),
+                          principal_axis=axis, source="oracle")
+
+
+def planned_grasp(X_OH: RigidTransform, joint_angles: np.ndarray, X_WO: RigidTransform,
+                  approach_distance: float = 0.12) -> GraspPlan:
+    """A grasp planned by another method (hand base pose X_OH in the object frame, 8 joint angles in
+    the controller order), executed through the same runner: the palm comes from a retreat along its
+    normal to the planned pose with the planned finger posture, then the hand closes."""
+    X_HP = RigidTransform([0.0, 0.0, hand.PALM_HEIGHT])
+    X_WP = X_WO @ X_OH @ X_HP
+    q = np.asarray(joint_angles, float)
+    return GraspPlan(None, float(q[0]), X_WP, approach_distance=approach_distance, stop_on_contact=False,
+                     finger_preshape=tuple(float(a) for a in q[2:8]))
