@@ -48,6 +48,7 @@ from drake_grasp.control.gravity_compensation import GravityCompensation
 from drake_grasp.control.hand_controller import HandController, HandControllerParams, SetHandActuatorGains
 from drake_grasp.objects import AddObject, ObjectSpec, resolve_object
 from drake_grasp.paths import DIAGRAMS_DIR, RegisterPackage
+from drake_grasp.protocol import TrialProtocol
 
 RENDERER_NAME = "vtk"
 
@@ -89,6 +90,7 @@ class Scenario:
     camera: CameraConfig = dataclasses.field(default_factory=CameraConfig)
     hand: HandControllerParams = dataclasses.field(default_factory=HandControllerParams)
     arm: ArmParams = dataclasses.field(default_factory=ArmParams)
+    protocol: TrialProtocol = dataclasses.field(default_factory=TrialProtocol)
 
 
 DEFAULT_SCENARIO_FILE = DIAGRAMS_DIR / "station.scenarios.yaml"
@@ -131,6 +133,7 @@ def validate_scenario(scenario: Scenario) -> None:
         raise ValueError(f"contact.friction must be >= 0, got {contact.friction}")
     if not (contact.hydroelastic_modulus > 0 and math.isfinite(contact.hydroelastic_modulus)):
         raise ValueError(f"contact.hydroelastic_modulus must be > 0 Pa, got {contact.hydroelastic_modulus}")
+    scenario.protocol.validate()
 
 
 @dataclasses.dataclass

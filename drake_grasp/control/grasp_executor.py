@@ -1,0 +1,223 @@
+"""Executes one grasp plan with the WAM and the hand: move, preshape, approach, close, lift, hold.
+
+The executor is a LeafSystem state machine (phase in abstract state, advanced by a periodic
+unrestricted update) that outputs the WAM's desired joint state and the hand's command. The approach
+is *guarded*: the palm moves along its normal at a constant speed and stops as soon as the contact
+force on the hand exceeds a threshold (the palm touched the object), or at the plan's target (the
+estimated surface). The same executor runs the compliant grasps and the grasps planned by other
+methods, so every method is executed by the same arm, controller and timings.
+"""
+
+import dataclasses
+import enum
+
+import numpy as np
+from pydrake.common.value import AbstractValue
+from pydrake.math import RigidTransform
+from pydrake.multibody.plant import ContactResults, MultibodyPlant
+from pydrake.geometry import SceneGraph
+from pydrake.multibody.tree import ModelInstanceIndex
+from pydrake.systems.framework import BasicVector, Context, LeafSystem, State
+
+from drake_grasp.control.arm_motion import ArmKinematics, JointPath
+from drake_grasp.grasps import GraspPlan
+from drake_grasp.hand import HandAction
+
+
+class Phase(enum.IntEnum):
+    MOVE = 0  # to the pre-grasp pose, hand opening to the mode's spread
+    PRESHAPE = 1  # fingers to a planned posture (planned grasps only)
+    APPROACH = 2  # along the palm normal, until contact or the target
+    CLOSE = 3  # torque close with breakaway
+    LIFT = 4
+    HOLD = 5
+    DONE = 6
+
+
+@dataclasses.dataclass
+class ExecutionTimes:
+    """Timing of the grasp sequence, s (choices: they live in the scenario's `protocol`)."""
+
+    approach_speed: float = 0.05  # m/s
+    touch_force: float = 2.0  # N: contact force on the hand that ends the approach
+    close_time: float = 1.6  # s for the fingers to close and settle
+    preshape_time: float = 1.2  # s
+    lift_height: float = 0.10  # m
+    lift_time: float = 1.5  # s
+    hold_time: float = 10.0  # s
+
+    joint_speed: float = 1.0  # rad/s: the largest joint speed of the move to the pre-grasp pose
+    update_period: float = 0.01  # s
+
+
+@dataclasses.dataclass
+class _Progress:
+    phase: Phase
+    phase_start: float
+    trajectory: object  # PiecewisePolynomial of the arm's joint angles
+    stopped_on_contact: bool = False
+    approach_travel: float = 0.0
+    phase_times: dict = dataclasses.field(default_factory=dict)
+
+
+class GraspExecutor(LeafSystem):
+    """Runs a GraspPlan from a start configuration of the arm.
+
+    Input ports:
+        wam_state: the WAM's [q; v] (7 + 7).
+        contact_results: the plant's ContactResults.
+    Output ports:
+        wam_desired_state: [q; v] for the station's ``wam.desired_state``.
+        hand_command: [spread, HandAction] for ``hand.command``.
+        finger_preshape: proximal angles (3) for ``hand.finger_preshape``.
+        phase: the current Phase, as a number.
+
+    Raises (at construction): ReachError if the arm cannot reach the pre-grasp or approach poses.
+    """
+
+    def __init__(self, plant: MultibodyPlant, scene_graph: SceneGraph, wam: ModelInstanceIndex, hand_bodies: list,
+                 plan: GraspPlan, q_start: np.ndarray, times: ExecutionTimes):
+        super().__init__()
+        self._inspector = scene_graph.model_inspector()
+        self._plan = plan
+        self._times = times
+        self._kinematics = ArmKinematics(plant, wam)
+        self._hand_bodies = set(int(b) for b in hand_bodies)
+        self._plant = plant
+        # Plan the arm's motion up to the end of the approach now: an unreachable plan fails before
+        # anything moves.
+        q_start = np.asarray(q_start, float)
+        self._q_pregrasp = self._kinematics.solve(plan.X_WP_pregrasp, q_start)
+        self._approach_path = self._kinematics.straight_line(plan.X_WP_pregrasp, plan.X_WP_target, self._q_pregrasp,
+                                                             step=0.01)
+        move_time = max(1.0, float(np.max(np.abs(self._q_pregrasp - q_start))) / times.joint_speed)
+        path = JointPath()
+        path.add(0.0, q_start)
+        path.add(move_time, self._q_pregrasp)
+        self._move_time = move_time
+        self._has_preshape = any(abs(a) > 1e-9 for a in plan.finger_preshape)
+        self._approach_duration = plan.approach_distance / times.approach_speed
+
+        self.DeclareVectorInputPort("wam_state", 14)
+        self.DeclareAbstractInputPort("contact_results", AbstractValue.Make(ContactResults()))
+        self._progress_index = self.DeclareAbstractState(
+            AbstractValue.Make(_Progress(Phase.MOVE, 0.0, path.ToTrajectory(), phase_times={Phase.MOVE: 0.0})))
+        self.DeclarePeriodicUnrestrictedUpdateEvent(times.update_period, 0.0, self._Update)
+        self.DeclareVectorOutputPort("wam_desired_state", 14, self._CalcDesiredState,
+                                     {self.abstract_state_ticket(self._progress_index), self.time_ticket()})
+        self.DeclareVectorOutputPort("hand_command", 2, self._CalcHandCommand,
+                                     {self.abstract_state_ticket(self._progress_index)})
+        self.DeclareVectorOutputPort("finger_preshape", 3, self._CalcPreshape, {self.nothing_ticket()})
+        self.DeclareVectorOutputPort("phase", 1, self._CalcPhase, {self.abstract_state_ticket(self._progress_index)})
+
+    # --- Reading the state. -----------------------------------------------------------------------
+
+    def progress(self, context: Context) -> _Progress:
+        return context.get_abstract_state(self._progress_index).get_value()
+
+    def phase(self, context: Context) -> Phase:
+        return self.progress(context).phase
+
+    # --- Outputs. ---------------------------------------------------------------------------------
+
+    def _CalcDesiredState(self, context: Context, output: BasicVector) -> None:
+        progress = self.progress(context)
+        trajectory = progress.trajectory
+        t = min(max(context.get_time(), trajectory.start_time()), trajectory.end_time())
+        q = trajectory.value(t).ravel()
+        v = trajectory.EvalDerivative(t, 1).ravel()
+        if context.get_time() >= trajectory.end_time():
+            v = np.zeros_like(v)
+        output.SetFromVector(np.concatenate([q, v]))
+
+    def _CalcHandCommand(self, context: Context, output: BasicVector) -> None:
+        phase = self.progress(context).phase
+        if phase <= Phase.MOVE:
+            action = HandAction.OPEN
+        elif phase == Phase.PRESHAPE or (phase == Phase.APPROACH and self._has_preshape):
+            action = HandAction.PRESHAPE
+        elif phase == Phase.APPROACH:
+            action = HandAction.OPEN
+        else:
+            action = HandAction.CLOSE
+        output.SetFromVector([self._plan.spread, float(action)])
+
+    def _CalcPreshape(self, context: Context, output: BasicVector) -> None:
+        output.SetFromVector(np.asarray(self._plan.finger_preshape[:3], float))
+
+    def _CalcPhase(self, context: Context, output: BasicVector) -> None:
+        output.SetFromVector([float(self.progress(context).phase)])
+
+    # --- The state machine. -----------------------------------------------------------------------
+
+    def _hand_contact_force(self, context: Context) -> float:
+        """Magnitude of the total contact force on the hand's bodies from other bodies, N."""
+        results: ContactResults = self.get_input_port(1).Eval(context)
+        total = np.zeros(3)
+        for i in range(results.num_hydroelastic_contacts()):
+            info = results.hydroelastic_contact_info(i)
+            surface = info.contact_surface()
+            body_m = self._body_of(surface.id_M())
+            body_n = self._body_of(surface.id_N())
+            force = info.F_Ac_W().translational()  # on the body of geometry M
+            if body_m in self._hand_bodies and body_n not in self._hand_bodies:
+                total += force
+            elif body_n in self._hand_bodies and body_m not in self._hand_bodies:
+                total -= force
+        for i in range(results.num_point_pair_contacts()):
+            info = results.point_pair_contact_info(i)
+            a, b = int(info.bodyA_index()), int(info.bodyB_index())
+            if a in self._hand_bodies and b not in self._hand_bodies:
+                total -= info.contact_force()  # contact_force is on B
+            elif b in self._hand_bodies and a not in self._hand_bodies:
+                total += info.contact_force()
+        return float(np.linalg.norm(total))
+
+    def _body_of(self, geometry_id) -> int:
+        return int(self._plant.GetBodyFromFrameId(self._inspector.GetFrameId(geometry_id)).index())
+
+    def _Update(self, context: Context, state: State) -> None:
+        progress: _Progress = dataclasses.replace(self.progress(context))
+        t = context.get_time()
+        elapsed = t - progress.phase_start
+        times = self._times
+        if progress.phase == Phase.MOVE and t >= self._move_time:
+            progress = self._enter(progress, Phase.PRESHAPE if self._has_preshape else Phase.APPROACH, t)
+        elif progress.phase == Phase.PRESHAPE and elapsed >= times.preshape_time:
+            progress = self._enter(progress, Phase.APPROACH, t)
+        elif progress.phase == Phase.APPROACH:
+            done = t >= progress.trajectory.end_time()
+            if self._plan.stop_on_contact and self._hand_contact_force(context) > times.touch_force:
+                progress.stopped_on_contact = True
+                done = True
+            if done:
+                progress.approach_travel = times.approach_speed * min(elapsed, self._approach_duration)
+                progress = self._enter(progress, Phase.CLOSE, t)
+        elif progress.phase == Phase.CLOSE and elapsed >= times.close_time:
+            progress = self._enter(progress, Phase.LIFT, t)
+
+        elif progress.phase == Phase.LIFT and elapsed >= times.lift_time:
+            progress = self._enter(progress, Phase.HOLD, t)
+        elif progress.phase == Phase.HOLD and elapsed >= times.hold_time:
+            progress = self._enter(progress, Phase.DONE, t)
+        state.get_mutable_abstract_state(self._progress_index).set_value(progress)
+
+    def _enter(self, progress: _Progress, phase: Phase, t: float) -> _Progress:
+        """Switches to `phase` at time t, with the arm trajectory that phase follows."""
+        q_now = progress.trajectory.value(min(t, progress.trajectory.end_time())).ravel()
+        path = JointPath()
+        if phase == Phase.APPROACH:
+            path.add(t, q_now)
+            path.add_segment(t, self._approach_duration, [q_now] + list(self._approach_path[1:]))
+        elif phase == Phase.LIFT:
+            X_WP = self._kinematics.palm_pose(q_now)
+            X_up = RigidTransform(X_WP.rotation(), X_WP.translation() + [0.0, 0.0, self._times.lift_height])
+            lift = self._kinematics.straight_line(X_WP, X_up, q_now, step=0.02)
+            path.add(t, q_now)
+            path.add_segment(t, self._times.lift_time, lift)
+        else:  # hold still where the arm is
+            path.add(t, q_now)
+            path.add(t + 1.0, q_now)
+        times = dict(progress.phase_times)
+        times[phase] = t
+        return _Progress(phase, t, path.ToTrajectory(), progress.stopped_on_contact, progress.approach_travel, times)

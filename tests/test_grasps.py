@@ -1,0 +1,103 @@
+"""The compliant grasps' geometry (pure functions of an object estimate) and the trial variation."""
+
+import math
+
+import numpy as np
+import pytest
+from pydrake.math import RigidTransform, RollPitchYaw, RotationMatrix
+
+from drake_grasp import hand
+from drake_grasp.grasps import (
+    GraspType,
+    ObjectEstimate,
+    box_grasp,
+    cylindrical_grasp,
+    oracle_estimate,
+    planned_grasp,
+    spherical_grasp,
+)
+from drake_grasp.hand import ComplianceMode
+from drake_grasp.objects import paper_object
+from drake_grasp.protocol import TrialProtocol, TrialVariation
+
+
+def _estimate(center, size, yaw=0.0, axis=None):
+    R = RotationMatrix.MakeZRotation(yaw).matrix()
+    return ObjectEstimate(np.array(center, float), R, np.array(size, float),
+                          None if axis is None else R @ np.asarray(axis, float))
+
+
+def test_spherical_grasp_comes_down_onto_the_top():
+    plan = spherical_grasp(_estimate([0.5, 0.1, 0.1], [0.2, 0.2, 0.2]))
+    assert plan.spread == pytest.approx(ComplianceMode.SPHERICAL.spread)
+    np.testing.assert_allclose(plan.X_WP_target.translation(), [0.5, 0.1, 0.2])
+    np.testing.assert_allclose(plan.X_WP_target.rotation().col(2), [0, 0, -1], atol=1e-12)
+    # The pre-grasp pose is straight above, approach_distance back along the palm normal.
+    np.testing.assert_allclose(plan.X_WP_pregrasp.translation(), [0.5, 0.1, 0.2 + plan.approach_distance])
+
+
+def test_cylindrical_grasp_closes_across_the_principal_axis():
+    yaw = math.radians(30)
+    plan = cylindrical_grasp(_estimate([0.5, 0.0, 0.05], [0.35, 0.1, 0.1], yaw=yaw, axis=[1, 0, 0]))
+    R = plan.X_WP_target.rotation()
+    # Palm x along the axis: F1/F2 and F3 (on -y and +y of the hand) face each other across it.
+    np.testing.assert_allclose(R.col(0), [math.cos(yaw), math.sin(yaw), 0], atol=1e-12)
+    np.testing.assert_allclose(R.col(2), [0, 0, -1], atol=1e-12)
+    np.testing.assert_allclose(plan.X_WP_target.translation(), [0.5, 0.0, 0.1], atol=1e-12)
+
+
+def test_cylindrical_grasp_of_a_standing_cylinder_comes_from_the_side():
+    plan = cylindrical_grasp(_estimate([0.5, 0.0, 0.15], [0.1, 0.1, 0.3], axis=[0, 0, 1]))
+    z = plan.X_WP_target.rotation().col(2)
+    assert abs(z[2]) < 1e-9  # horizontal approach
+    np.testing.assert_allclose(plan.X_WP_target.rotation().col(0), [0, 0, 1], atol=1e-12)
+
+
+def test_box_grasp_stands_off_a_face_wider_than_the_knuckles():
+    narrow = box_grasp(_estimate([0.5, 0, 0.02], [0.11, 0.07, 0.035]))  # the sponge
+    np.testing.assert_allclose(narrow.X_WP_target.translation(), [0.5, 0, 0.02 + 0.0175])
+    wide = box_grasp(_estimate([0.5, 0, 0.04], [0.26, 0.18, 0.08]))  # the game box
+    standoff = wide.X_WP_target.translation()[2] - 0.08
+    assert standoff == pytest.approx(0.09 - hand.A1 - (hand.PALM_HEIGHT - hand.DW))
+    # Fingers close across the shorter side of the top face: palm x along the longer one.
+    np.testing.assert_allclose(np.abs(wide.X_WP_target.rotation().col(0)), [1, 0, 0], atol=1e-12)
+    assert wide.grasp == GraspType.BOX and wide.spread == ComplianceMode.CYLINDRICAL.spread
+
+
+def test_oracle_estimate_is_the_ground_truth():
+    spec = paper_object("bottle_case")
+    X_WO = RigidTransform(RollPitchYaw(0, 0, 0.3), [0.5, 0.1, spec.rest_height])
+    est = oracle_estimate(X_WO, spec)
+    np.testing.assert_allclose(est.center, X_WO.translation())
+    np.testing.assert_allclose(est.principal_axis, X_WO.rotation() @ np.asarray(spec.principal_axis))
+    assert est.half_extent_along([0, 0, 1]) == pytest.approx(0.05)
+
+
+def test_estimates_reject_nonsense():
+    with pytest.raises(ValueError, match="non-finite"):
+        ObjectEstimate(np.array([np.nan, 0, 0]), np.eye(3), np.ones(3))
+    with pytest.raises(ValueError, match="positive"):
+        ObjectEstimate(np.zeros(3), np.eye(3), np.array([0.1, 0.0, 0.1]))
+
+
+def test_planned_grasp_puts_the_palm_where_the_planner_put_the_hand():
+    X_WO = RigidTransform(RollPitchYaw(0, 0, 0.5), [0.6, 0.0, 0.1])
+    X_OH = RigidTransform(RollPitchYaw(math.pi, 0, 0), [0.0, 0.0, 0.2])
+    q = np.array([0.3, 0.3, 0.1, 0.2, 0.3, 0.05, 0.06, 0.07])
+    plan = planned_grasp(X_OH, q, X_WO)
+    X_WP = X_WO @ X_OH @ RigidTransform([0, 0, hand.PALM_HEIGHT])
+    assert plan.X_WP_target.IsNearlyEqualTo(X_WP, 1e-12)
+    assert plan.spread == pytest.approx(0.3)
+    assert plan.finger_preshape == pytest.approx((0.1, 0.2, 0.3, 0.05, 0.06, 0.07))
+    assert not plan.stop_on_contact
+
+
+def test_trial_variation_is_seeded_and_bounded():
+    protocol = TrialProtocol()
+    a, b = TrialVariation.draw(7, protocol), TrialVariation.draw(7, protocol)
+    assert a == b
+    assert a != TrialVariation.draw(8, protocol)
+    draws = [TrialVariation.draw(s, protocol) for s in range(200)]
+    assert max(abs(d.dx) for d in draws) <= 0.01 and max(abs(d.dy) for d in draws) <= 0.01
+    assert max(abs(d.dyaw) for d in draws) <= math.radians(10)
+    assert all(0.8 <= d.friction_scale <= 1.2 for d in draws)
