@@ -18,6 +18,13 @@ model and no contact planning: the hand's compliance does the rest.
   short of the face, so that the proximal links meet the top edges at about 45 degrees and the distal
   links wrap down the sides.
 
+The object rests on a table whose height the estimate gives (the object's bottom). Closing from
+above, the BarrettHand's bent fingertips sweep about 10 cm beyond the palm: a palm brought lower
+would drive the fingertips into the table before they reach a small object (they would stall there
+and break away). So a top-down grasp never brings the palm closer to the table than that sweep plus
+a small clearance: on objects lower than that, the fingertips pass just above the table and close on
+the object from below its middle, and the palm stops above it.
+
 All poses are palm poses X_WP (P = ``bh_palm``: the palm centre, z along the palm normal); the
 approach runs along +z_P.
 """
@@ -36,6 +43,10 @@ from drake_grasp.hand import ComplianceMode
 _KNUCKLE_BEHIND_PALM = hand.PALM_HEIGHT - hand.DW
 # Distance of the proximal axes from the palm centre across the closing direction, m.
 _KNUCKLE_SPACING_HALF = hand.A1
+# Fingertips pass this far above the table at the bottom of their sweep (a choice), m.
+TABLE_CLEARANCE = 0.005
+# Approaches within this angle of the vertical are "from above" for the table clearance.
+_FROM_ABOVE = math.radians(45.0)
 
 
 class GraspType(enum.Enum):
@@ -123,13 +134,26 @@ def _palm_rotation(approach_W: np.ndarray, x_hint_W: np.ndarray) -> RotationMatr
 _DOWN = np.array([0.0, 0.0, -1.0])
 
 
+def _clear_of_table(estimate: ObjectEstimate, R_WP: RotationMatrix, target: np.ndarray, spread: float) -> np.ndarray:
+    """Raises a from-above palm target so that the closing fingertips pass above the table."""
+    approach = R_WP.col(2)
+    if np.dot(approach, _DOWN) < math.cos(_FROM_ABOVE):
+        return target
+    table_z = float(np.asarray(estimate.center)[2]) - estimate.half_extent_along(_DOWN)
+    lowest_palm = table_z + (hand.fingertip_sweep_depth(spread) + TABLE_CLEARANCE) / np.dot(approach, _DOWN)
+    if target[2] >= lowest_palm:
+        return target
+    return target + (lowest_palm - target[2]) / np.dot(-approach, [0.0, 0.0, 1.0]) * -approach
+
+
 def spherical_grasp(estimate: ObjectEstimate) -> GraspPlan:
     """Spherical mode; the palm centre approaches the object's centre from above."""
     x_hint = estimate.principal_axis if estimate.principal_axis is not None else np.asarray(estimate.R_WB)[:, 0]
     R_WP = _palm_rotation(_DOWN, x_hint)
     top = estimate.half_extent_along(_DOWN)
-    target = np.asarray(estimate.center) + [0.0, 0.0, top]
-    return GraspPlan(GraspType.SPHERICAL, ComplianceMode.SPHERICAL.spread, RigidTransform(R_WP, target))
+    spread = ComplianceMode.SPHERICAL.spread
+    target = _clear_of_table(estimate, R_WP, np.asarray(estimate.center) + [0.0, 0.0, top], spread)
+    return GraspPlan(GraspType.SPHERICAL, spread, RigidTransform(R_WP, target))
 
 
 def cylindrical_grasp(estimate: ObjectEstimate) -> GraspPlan:
@@ -145,8 +169,10 @@ def cylindrical_grasp(estimate: ObjectEstimate) -> GraspPlan:
         approach = np.cross(axis, [0.0, 1.0, 0.0])
     approach = approach / np.linalg.norm(approach)
     R_WP = _palm_rotation(approach, axis)
+    spread = ComplianceMode.CYLINDRICAL.spread
     target = np.asarray(estimate.center) - estimate.half_extent_along(approach) * approach
-    return GraspPlan(GraspType.CYLINDRICAL, ComplianceMode.CYLINDRICAL.spread, RigidTransform(R_WP, target))
+    target = _clear_of_table(estimate, R_WP, target, spread)
+    return GraspPlan(GraspType.CYLINDRICAL, spread, RigidTransform(R_WP, target))
 
 
 def box_grasp(estimate: ObjectEstimate) -> GraspPlan:
@@ -162,8 +188,10 @@ def box_grasp(estimate: ObjectEstimate) -> GraspPlan:
     # Stand off when the face is wider than the knuckles: the proximal links then meet the top
     # edges at ~45 deg instead of landing flat on the face.
     standoff = max(0.0, half_width - _KNUCKLE_SPACING_HALF - _KNUCKLE_BEHIND_PALM)
+    spread = ComplianceMode.CYLINDRICAL.spread
     target = np.asarray(estimate.center) - (size[up] / 2 + standoff) * approach
-    return GraspPlan(GraspType.BOX, ComplianceMode.CYLINDRICAL.spread, RigidTransform(R_WP, target))
+    target = _clear_of_table(estimate, R_WP, target, spread)
+    return GraspPlan(GraspType.BOX, spread, RigidTransform(R_WP, target))
 
 
 COMPLIANT_GRASPS = {

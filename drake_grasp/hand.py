@@ -149,3 +149,49 @@ def finger_dh_table(finger: int, spread: float = 0.0, proximal: float = 0.0, dis
         (A2, 0.0, 0.0, distal + PHI3),
         (A3, -math.pi / 2, D3, 0.0),
     )
+
+
+def _modified_dh_matrix(a: float, alpha: float, d: float, theta: float):
+    import numpy as np
+
+    ca, sa, ct, st = math.cos(alpha), math.sin(alpha), math.cos(theta), math.sin(theta)
+    # RotX(alpha) TransX(a) RotZ(theta) TransZ(d)
+    return np.array([
+        [ct, -st, 0.0, a],
+        [ca * st, ca * ct, -sa, -sa * d],
+        [sa * st, sa * ct, ca, ca * d],
+        [0.0, 0.0, 0.0, 1.0],
+    ])
+
+
+def distal_points_in_base(finger: int, spread: float, proximal: float, distal: float, points_D):
+    """Points given in a finger's distal-link frame, expressed in the hand base frame W (m).
+
+    Pure numpy forward kinematics from the D-H table (`finger_dh_table`).
+    """
+    import numpy as np
+
+    T = np.eye(4)
+    for row in finger_dh_table(finger, spread, proximal, distal)[:3]:
+        T = T @ _modified_dh_matrix(*row)
+    P = np.asarray(points_D, float)
+    return P @ T[:3, :3].T + T[:3, 3]
+
+
+def fingertip_sweep_depth(spread: float = 0.0, samples: int = 141) -> float:
+    """How far beyond the palm surface the fingers reach while closing in the coupled phase, m.
+
+    The deepest point, along the palm normal, of the distal links' tip edges over a free closing
+    (distal = proximal / 3) of every finger at the given spread. A grasp that brings the palm closer
+    than this to a table lets the fingertips strike it.
+    """
+    import numpy as np
+
+    tip_edge = np.array([[A3, y, z] for y in (-DISTAL_THICKNESS / 2, DISTAL_THICKNESS / 2)
+                         for z in (-FINGER_WIDTH / 2, FINGER_WIDTH / 2)])
+    depth = 0.0
+    for proximal in np.linspace(PROXIMAL_LIMITS[0], PROXIMAL_LIMITS[1], samples):
+        for finger in FINGERS:
+            p = distal_points_in_base(finger, spread, proximal, proximal * DISTAL_PER_PROXIMAL, tip_edge)
+            depth = max(depth, float(p[:, 2].max()) - PALM_HEIGHT)
+    return depth
