@@ -99,6 +99,9 @@ DEFAULT_SCENARIO_FILE = DIAGRAMS_DIR / "station.scenarios.yaml"
 def load_scenario(filename: str | pathlib.Path = DEFAULT_SCENARIO_FILE, scenario_name: str = "default") -> Scenario:
     """Loads the scenario `scenario_name` from a YAML file of named scenarios.
 
+    A scenario in another file than the default one starts from the default scenario
+    (diagrams/station.scenarios.yaml, "default") and overrides only what it says.
+
     Raises:
         ValueError: (one line) if the file cannot be read or does not match the Scenario schema.
     """
@@ -108,8 +111,10 @@ def load_scenario(filename: str | pathlib.Path = DEFAULT_SCENARIO_FILE, scenario
     except OSError as e:
         raise ValueError(f"{filename}: cannot read scenario file ({e.strerror})") from None
     try:
-        scenario = yaml_load_typed(schema=Scenario, data=text, child_name=scenario_name,
-                                   defaults=Scenario())
+        defaults = Scenario()
+        if filename.resolve() != DEFAULT_SCENARIO_FILE.resolve():
+            defaults = load_scenario(DEFAULT_SCENARIO_FILE, "default")
+        scenario = yaml_load_typed(schema=Scenario, data=text, child_name=scenario_name, defaults=defaults)
     except Exception as e:  # yaml_load_typed raises RuntimeError / yaml errors with multi-line text
         first_line = str(e).strip().splitlines()[0] if str(e).strip() else type(e).__name__
         raise ValueError(f"{filename}: scenario '{scenario_name}' is malformed: {first_line}") from None

@@ -87,6 +87,10 @@ def test_fingertip_matches_dh_table(finger, spread, proximal, distal):
     X_WT = plant.GetFrameByName(f"bh_tip_{finger}").CalcPoseInWorld(context)
     expected = barrett_fingertip(finger, spread, proximal, distal)
     np.testing.assert_allclose(X_WT.translation(), expected, atol=1e-4)
+    # The package's own pure forward kinematics (used to keep fingertips off the table) agrees.
+    from drake_grasp import hand
+    p = hand.distal_points_in_base(finger, spread, proximal, distal, [[hand.A3, hand.D3, 0.0]])[0]
+    np.testing.assert_allclose(p, expected, atol=1e-9)
 
 
 def test_open_hand_is_flat_and_spherical_mode_is_120_degrees_apart():

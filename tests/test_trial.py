@@ -1,0 +1,80 @@
+"""Grasp trials in real simulation: the executor, the success test, failure reasons, the CLI."""
+
+import dataclasses
+import json
+import math
+
+import numpy as np
+import pytest
+from pydrake.math import RigidTransform
+
+from drake_grasp import cli
+from drake_grasp.grasps import GraspPlan, oracle_estimate, plan_compliant_grasp
+from drake_grasp.objects import paper_object
+from drake_grasp.station import load_scenario
+from drake_grasp.trial import MISSED, UNREACHABLE, run_trial
+
+
+@pytest.fixture
+def short_scenario():
+    """The default scenario with a 2 s hold: the default suite's short version of a trial."""
+    scenario = load_scenario()
+    scenario.protocol.execution.hold_time = 2.0
+    return scenario
+
+
+def _oracle(grasp):
+    return lambda X_WO, spec: plan_compliant_grasp(grasp, oracle_estimate(X_WO, spec))
+
+
+def test_spherical_grasp_of_the_soccer_ball_succeeds(short_scenario):
+    record = run_trial(short_scenario, paper_object("soccer_ball"), _oracle("spherical"), seed=1,
+                       method="oracle", grasp="spherical")
+    assert record.success, record.summary()
+    assert record.lift > 0.08
+    assert record.slip_distance < 0.01
+    assert {"bh_finger_1_distal", "bh_finger_2_distal", "bh_finger_3_distal"} <= set(record.contacts_at_end.split())
+
+
+def test_a_grasp_beside_the_object_misses(short_scenario):
+    def beside(X_WO, spec):
+        plan = plan_compliant_grasp("spherical", oracle_estimate(X_WO, spec))
+        X = plan.X_WP_target
+        return dataclasses.replace(plan, X_WP_target=RigidTransform(X.rotation(), X.translation() + [0, 0.3, 0]))
+
+    record = run_trial(short_scenario, paper_object("apple"), beside, seed=0, method="oracle", grasp="spherical")
+    assert not record.success
+    assert record.failure == MISSED
+    assert record.contacts_after_close == ""
+
+
+def test_an_unreachable_grasp_is_a_failed_trial_not_a_crash(short_scenario):
+    def far(X_WO, spec):
+        plan = plan_compliant_grasp("spherical", oracle_estimate(X_WO, spec))
+        return dataclasses.replace(plan, X_WP_target=RigidTransform(plan.X_WP_target.rotation(), [3.0, 0.0, 0.2]))
+
+    record = run_trial(short_scenario, paper_object("apple"), far, seed=0, method="oracle", grasp="spherical")
+    assert record.failure == UNREACHABLE and not record.success
+
+
+def test_same_seed_same_trial(short_scenario):
+    short_scenario.protocol.execution.hold_time = 0.5
+    a = run_trial(short_scenario, paper_object("sponge"), _oracle("box"), seed=3, method="oracle", grasp="box")
+    b = run_trial(short_scenario, paper_object("sponge"), _oracle("box"), seed=3, method="oracle", grasp="box")
+    assert a.variation == b.variation
+    assert a.lift == b.lift and a.slip_distance == b.slip_distance and a.success == b.success
+
+
+def test_trial_cli_json_and_errors(capsys, tmp_path, monkeypatch):
+    scenario_file = tmp_path / "short.yaml"
+    # A user's scenario file overrides only what it says, on top of the default scenario.
+    scenario_file.write_text("default:\n  protocol:\n    execution:\n      hold_time: 0.5\n")
+    assert cli.main(["trial", "--object", "bottle_case", "--grasp", "cylindrical", "--oracle", "--seed", "2",
+                     "--json", "--scenario", str(scenario_file)]) == 0
+    record = json.loads(capsys.readouterr().out)
+    assert record["object"] == "bottle_case" and record["seed"] == 2 and "success" in record
+    assert cli.main(["trial", "--object", "nope", "--grasp", "box", "--oracle"]) == 2
+    assert "unknown object" in capsys.readouterr().err
+    scenario_file.write_text("default:\n  protocol:\n    slip_distance: .nan\n")
+    assert cli.main(["trial", "--object", "apple", "--grasp", "box", "--oracle", "--scenario", str(scenario_file)]) == 2
+    assert "slip_distance" in capsys.readouterr().err
