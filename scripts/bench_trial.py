@@ -1,0 +1,45 @@
+#!/usr/bin/env python3
+"""Benchmark: wall time of one full grasp trial (move, approach, close, lift 10 cm, hold 10 s).
+
+    .venv/bin/python scripts/bench_trial.py [--scenario-name default]
+
+Runs on one core (the trial itself is single-threaded); target: at most 5 s per trial, with a time
+step and contact model that hold a grasped object honestly (the slip is printed beside the time).
+"""
+
+import argparse
+import math
+import time
+
+from drake_grasp.grasps import oracle_estimate, plan_compliant_grasp
+from drake_grasp.objects import paper_object
+from drake_grasp.station import DEFAULT_SCENARIO_FILE, load_scenario
+from drake_grasp.trial import run_trial
+
+CASES = [("soccer_ball", "spherical"), ("bottle_case", "cylindrical"), ("sponge", "box"), ("apple", "box")]
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--scenario-name", default="default")
+    args = parser.parse_args()
+    scenario = load_scenario(DEFAULT_SCENARIO_FILE, args.scenario_name)
+    config = scenario.plant_config
+    print(f"scenario '{args.scenario_name}': time step {config.time_step * 1000:.1f} ms, {config.contact_model}, "
+          f"{config.discrete_contact_approximation}")
+    walls = []
+    for name, grasp in CASES:
+        start = time.perf_counter()
+        record = run_trial(scenario, paper_object(name), lambda X, s, g=grasp: plan_compliant_grasp(g, oracle_estimate(X, s)),
+                           seed=0, method="oracle", grasp=grasp)
+        wall = time.perf_counter() - start
+        walls.append(wall)
+        slip = (f"slip {record.slip_distance * 1000:.2f} mm / {math.degrees(record.slip_angle):.2f} deg"
+                if math.isfinite(record.slip_distance) else "no hold")
+        print(f"  {name:12s} {grasp:12s} {'held' if record.success else record.failure:20s} {slip:28s} "
+              f"{record.sim_time:5.1f} s simulated, {wall:5.2f} s wall ({record.sim_time / wall:4.1f}x real time)")
+    print(f"mean wall time per trial: {sum(walls) / len(walls):.2f} s (target <= 5 s)")
+
+
+if __name__ == "__main__":
+    main()
