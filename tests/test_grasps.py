@@ -8,6 +8,7 @@ from pydrake.math import RigidTransform, RollPitchYaw, RotationMatrix
 
 from drake_grasp import hand
 from drake_grasp.grasps import (
+    TABLE_CLEARANCE,
     GraspType,
     ObjectEstimate,
     box_grasp,
@@ -38,12 +39,13 @@ def test_spherical_grasp_comes_down_onto_the_top():
 
 def test_cylindrical_grasp_closes_across_the_principal_axis():
     yaw = math.radians(30)
-    plan = cylindrical_grasp(_estimate([0.5, 0.0, 0.05], [0.35, 0.1, 0.1], yaw=yaw, axis=[1, 0, 0]))
+    # Thick enough (25 cm) that the table clearance does not come into it.
+    plan = cylindrical_grasp(_estimate([0.5, 0.0, 0.125], [0.35, 0.25, 0.25], yaw=yaw, axis=[1, 0, 0]))
     R = plan.X_WP_target.rotation()
     # Palm x along the axis: F1/F2 and F3 (on -y and +y of the hand) face each other across it.
     np.testing.assert_allclose(R.col(0), [math.cos(yaw), math.sin(yaw), 0], atol=1e-12)
     np.testing.assert_allclose(R.col(2), [0, 0, -1], atol=1e-12)
-    np.testing.assert_allclose(plan.X_WP_target.translation(), [0.5, 0.0, 0.1], atol=1e-12)
+    np.testing.assert_allclose(plan.X_WP_target.translation(), [0.5, 0.0, 0.25], atol=1e-12)
 
 
 def test_cylindrical_grasp_of_a_standing_cylinder_comes_from_the_side():
@@ -54,14 +56,29 @@ def test_cylindrical_grasp_of_a_standing_cylinder_comes_from_the_side():
 
 
 def test_box_grasp_stands_off_a_face_wider_than_the_knuckles():
-    narrow = box_grasp(_estimate([0.5, 0, 0.02], [0.11, 0.07, 0.035]))  # the sponge
-    np.testing.assert_allclose(narrow.X_WP_target.translation(), [0.5, 0, 0.02 + 0.0175])
-    wide = box_grasp(_estimate([0.5, 0, 0.04], [0.26, 0.18, 0.08]))  # the game box
-    standoff = wide.X_WP_target.translation()[2] - 0.08
+    # Boxes 15 cm tall, so that the table clearance does not come into it.
+    narrow = box_grasp(_estimate([0.5, 0, 0.075], [0.11, 0.07, 0.15]))
+    np.testing.assert_allclose(narrow.X_WP_target.translation(), [0.5, 0, 0.15])
+    wide = box_grasp(_estimate([0.5, 0, 0.075], [0.26, 0.18, 0.15]))
+    standoff = wide.X_WP_target.translation()[2] - 0.15
     assert standoff == pytest.approx(0.09 - hand.A1 - (hand.PALM_HEIGHT - hand.DW))
     # Fingers close across the shorter side of the top face: palm x along the longer one.
     np.testing.assert_allclose(np.abs(wide.X_WP_target.rotation().col(0)), [1, 0, 0], atol=1e-12)
     assert wide.grasp == GraspType.BOX and wide.spread == ComplianceMode.CYLINDRICAL.spread
+
+
+@pytest.mark.parametrize("grasp", [spherical_grasp, cylindrical_grasp, box_grasp])
+def test_from_above_the_closing_fingertips_pass_over_the_table(grasp):
+    # A low object on the table (top at 3.5 cm): the palm stays high enough that no fingertip
+    # reaches the table during a free closing, and only just (the clearance).
+    plan = grasp(_estimate([0.5, 0.0, 0.0175], [0.11, 0.07, 0.035], axis=[1, 0, 0]))
+    X_WP = plan.X_WP_target
+    X_WH = X_WP @ RigidTransform([0, 0, -hand.PALM_HEIGHT])
+    corners = [[hand.A3, y, z] for y in (-hand.D3, hand.D3) for z in (-0.0125, 0.0125)]
+    lowest = min(
+        (X_WH @ hand.distal_points_in_base(f, plan.spread, p, p / 3, corners).T)[2].min()
+        for f in (1, 2, 3) for p in np.linspace(0, hand.PROXIMAL_LIMITS[1], 141))
+    assert TABLE_CLEARANCE - 1e-6 <= lowest <= TABLE_CLEARANCE + 1e-3
 
 
 def test_oracle_estimate_is_the_ground_truth():
