@@ -72,17 +72,15 @@ class UniformStream:
     def __init__(self, rng: np.random.Generator, block: int = 1 << 16):
         self._rng = rng
         self._block = block
-        self._values: list[float] = []
-        self._index = 0
+        self._values = iter(())
 
     def next(self) -> float:
         """The next number."""
-        if self._index >= len(self._values):
-            self._values = self._rng.random(self._block).tolist()
-            self._index = 0
-        value = self._values[self._index]
-        self._index += 1
-        return value
+        try:
+            return next(self._values)
+        except StopIteration:
+            self._values = iter(self._rng.random(self._block).tolist())
+            return next(self._values)
 
 
 _LOWER = [v.lower for v in SEARCH_VARIABLES]

@@ -53,8 +53,9 @@ def contact_energy(normals, distances, directions) -> float:
     Returns:
         The mean over contacts of |p| (mm) + 50 (1 − n̂·p̂); dimension mm.
     """
-    cosines = np.einsum("ij,ij->i", normals, directions)
-    return float(np.mean(np.abs(distances)) * MM_PER_M + NORMAL_WEIGHT * (1.0 - np.mean(cosines)))
+    n = len(distances)
+    cosine_sum = np.einsum("ij,ij->", normals, directions)
+    return float(np.abs(distances).sum() * MM_PER_M + NORMAL_WEIGHT * (n - cosine_sum)) / n
 
 
 def contact_energy_from_points(points, normals, closest_points) -> float:
@@ -124,5 +125,6 @@ def contact_quality_energy(normals, distances, directions, friction) -> float:
     cosines = np.einsum("ij,ij->i", normals, directions)
     sf = quality_scale(distances, cosines)
     if np.count_nonzero(sf > QUALITY_COUNT_FACTOR) < QUALITY_MIN_CONTACTS:
-        return float(np.mean(np.abs(distances)) * MM_PER_M + NORMAL_WEIGHT * (1.0 - np.mean(cosines)))
+        n = len(cosines)
+        return float(np.abs(distances).sum() * MM_PER_M + NORMAL_WEIGHT * (n - cosines.sum())) / n
     return -force_space_epsilon(normals, friction, sf)

@@ -195,14 +195,12 @@ class EigengraspPlanner:
 
     # --- The energy of a state (the inner loop). --------------------------------------------------
 
-    def _posture(self, a0: float, a1: float):
-        """(spread, flex, distal) and the contacts in the hand frame, cached for a repeated posture."""
-        spread, flex = eigengrasps.spread_and_flex(a0, a1)
+    def _contact_frames(self, spread: float, flex: float, distal: float):
+        """The virtual contacts in the hand frame for a posture, cached while it repeats."""
         key = (spread, flex)
         if key != self._posture_key:
-            distal = eigengrasps.distal_angle(flex)
             self._posture_key = key
-            self._posture_frames = (spread, flex, distal, *contact_frames_for_posture(spread, flex, distal))
+            self._posture_frames = contact_frames_for_posture(spread, flex, distal)
         return self._posture_frames
 
     def evaluate(self, state) -> float | None:
@@ -216,21 +214,22 @@ class EigengraspPlanner:
         w = math.cos(0.5 * alpha)
         st = s * math.sin(theta)
         x, y, z = st * math.cos(phi), st * math.sin(phi), s * math.cos(theta)
-        # R_OP = R_OH; its columns, and p_OH = p_OP − PALM_HEIGHT · z_P.
-        xx, yy, zz, xy, xz, yz, wx, wy, wz = x * x, y * y, z * z, x * y, x * z, y * z, w * x, w * y, w * z
-        R = np.array([[1.0 - 2.0 * (yy + zz), 2.0 * (xy - wz), 2.0 * (xz + wy)],
-                      [2.0 * (xy + wz), 1.0 - 2.0 * (xx + zz), 2.0 * (yz - wx)],
-                      [2.0 * (xz - wy), 2.0 * (yz + wx), 1.0 - 2.0 * (xx + yy)]])
+        # p_OH = p_OP − PALM_HEIGHT · z_P, with z_P the third column of R_OP = R_OH.
         h = hand.PALM_HEIGHT
-        p_OH = (tx - h * R[0, 2], ty - h * R[1, 2], tz - h * R[2, 2])
-        spread, flex, distal, points_H, normals_H = self._posture(a0, a1)
+        p_OH = (tx - h * 2.0 * (x * z + w * y), ty - h * 2.0 * (y * z - w * x), tz - h * (1.0 - 2.0 * (x * x + y * y)))
+        spread, flex = eigengrasps.spread_and_flex(a0, a1)
+        distal = eigengrasps.distal_angle(flex)
         scene = self.scene
-        scene.set_configuration((w, x, y, z), p_OH,
-                                (spread, spread, flex, flex, flex, distal, distal, distal))
+        scene.set_configuration((w, x, y, z), p_OH, (spread, spread, flex, flex, flex, distal, distal, distal))
         if scene.in_collision():
             return None
-        points = points_H @ R.T + p_OH
-        normals = normals_H @ R.T
+        points_H, normals_H = self._contact_frames(spread, flex, distal)
+        xx, yy, zz, xy, xz, yz, wx, wy, wz = x * x, y * y, z * z, x * y, x * z, y * z, w * x, w * y, w * z
+        R_T = np.array([[1.0 - 2.0 * (yy + zz), 2.0 * (xy + wz), 2.0 * (xz - wy)],
+                        [2.0 * (xy - wz), 1.0 - 2.0 * (xx + zz), 2.0 * (yz + wx)],
+                        [2.0 * (xz + wy), 2.0 * (yz - wx), 1.0 - 2.0 * (xx + yy)]])  # R_OH transposed
+        points = points_H @ R_T + p_OH
+        normals = normals_H @ R_T
         distances, gradients = scene.contact_distances(points)
         # p̂ points from the contact to its closest object point: −gradient outside the object.
         if distances.min() >= 0.0:
@@ -253,7 +252,8 @@ class EigengraspPlanner:
             rng: The random generator to use (no global state is touched).
 
         Returns:
-            A dict: "best" (list of (energy, state, k), lowest energy first, at most 20),
+            A dict: "best" (list of (energy, state, k), lowest energy first, at most 20; k is the
+            step at which the state was reached),
             "iterations", "failed_iterations", "evaluations", "collisions", "time" (s).
         """
         max_steps = _check_steps(max_steps)
@@ -293,7 +293,9 @@ class EigengraspPlanner:
             if jumped:
                 worst = annealing.OPEN_LIST_ENERGY if len(best) < annealing.BEST_LIST_SIZE else best[-1][0]
                 if current_energy < worst:
-                    _add_unique(best, (current_energy, current, k - 1), max_radius)
+                    pose = search_space.palm_position_and_quaternion(current)
+                    _add_unique(best, (current_energy, current, k - 1, pose), max_radius)
+        best = [entry[:3] for entry in best]
         return {"best": best, "iterations": iterations, "failed_iterations": failed,
                 "evaluations": evaluations, "collisions": collisions,
                 "time": time.perf_counter() - start}
@@ -343,10 +345,10 @@ def _add_unique(best: list, entry: tuple, max_radius: float) -> None:
     the scan stops at the first close state with a lower or equal energy, and the new state is then
     not added (GraspIt! keeps the removals made before that point).
     """
-    energy_new, state_new, _ = entry
+    energy_new, pose_new = entry[0], entry[3]
     i, add = 0, True
     while i < len(best):
-        if search_space.state_distance(state_new, best[i][1], max_radius) < annealing.MERGE_DISTANCE:
+        if search_space.pose_distance(pose_new, best[i][3], max_radius) < annealing.MERGE_DISTANCE:
             if energy_new < best[i][0]:
                 del best[i]
                 continue

@@ -137,6 +137,19 @@ def state_from_palm_pose(X_OP: RigidTransform, amplitudes_=(0.0, 0.0)) -> np.nda
     return np.array([p[0], p[1], p[2], theta, phi, alpha, *amplitudes_], dtype=float)
 
 
+def palm_position_and_quaternion(state) -> tuple[tuple[float, float, float], tuple[float, float, float, float]]:
+    """The palm frame's origin in O (m) and orientation quaternion (w, x, y, z) for a state."""
+    return (state[TX], state[TY], state[TZ]), axis_angle_quaternion(state[THETA], state[PHI], state[ALPHA])
+
+
+def pose_distance(pose_a, pose_b, max_radius: float) -> float:
+    """:func:`state_distance` between two (position, quaternion) pairs of palm_position_and_quaternion."""
+    dp = math.dist(pose_a[0], pose_b[0]) / max_radius
+    dot = min(1.0, abs(sum(x * y for x, y in zip(pose_a[1], pose_b[1]))))
+    angle = 2.0 * math.acos(dot)
+    return max(dp, ANGLE_DISTANCE_WEIGHT * angle / math.pi)
+
+
 def state_distance(a, b, max_radius: float) -> float:
     """GraspIt!'s distance between two states, used to merge near-duplicates in the best list.
 
@@ -149,9 +162,4 @@ def state_distance(a, b, max_radius: float) -> float:
         a, b: States (8,).
         max_radius: The object's largest distance from its centre of mass to its surface, m.
     """
-    dp = math.dist(a[TX:TZ + 1], b[TX:TZ + 1]) / max_radius
-    qa = axis_angle_quaternion(a[THETA], a[PHI], a[ALPHA])
-    qb = axis_angle_quaternion(b[THETA], b[PHI], b[ALPHA])
-    dot = min(1.0, abs(sum(x * y for x, y in zip(qa, qb))))
-    angle = 2.0 * math.acos(dot)
-    return max(dp, ANGLE_DISTANCE_WEIGHT * angle / math.pi)
+    return pose_distance(palm_position_and_quaternion(a), palm_position_and_quaternion(b), max_radius)

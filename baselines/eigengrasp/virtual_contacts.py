@@ -141,7 +141,9 @@ def contact_frames_for_posture(spread: float, flex: float, distal: float) -> tup
     """:func:`contact_frames_in_hand` for a posture whose three fingers share one flexion.
 
     The planner's fast path (the Barrett's eigengrasps keep the fingers together): the planar
-    coordinates are computed once, with scalar math, for all three fingers.
+    coordinates (radial distance ρ, height h) of a finger's contacts are computed once with scalar
+    math, and one matrix product [ρ, h, 1] · [u_f; z; o_f] places them on the three fingers (u_f is
+    finger f's radial direction, o_f its knuckle axis).
 
     Args:
         spread: Spread of each of F1 and F2, rad.
@@ -151,19 +153,33 @@ def contact_frames_for_posture(spread: float, flex: float, distal: float) -> tup
     t2 = flex + hand.PHI2
     t23 = t2 + distal + hand.PHI3
     c2, s2, c23, s23 = math.cos(t2), math.sin(t2), math.cos(t23), math.sin(t23)
-    rho, height, n_rho, n_h = [], [], [], []
+    rows = []
+    normal_rows = []
     for x, y, nx, ny, is_distal in _LOCAL_ROWS:
         if is_distal:
             c, s, b_rho, b_h = c23, s23, hand.A1 + hand.A2 * c2, hand.A2 * s2
         else:
             c, s, b_rho, b_h = c2, s2, hand.A1, 0.0
-        rho.append(b_rho + x * c - y * s)
-        height.append(b_h + x * s + y * c)
-        n_rho.append(nx * c - ny * s)
-        n_h.append(nx * s + ny * c)
-    planar = np.array([rho, height, n_rho, n_h])
-    return _to_hand_frame(np.array([spread, spread, 0.0]), planar[0][None, :], planar[1][None, :],
-                          planar[2][None, :], planar[3][None, :])
+        rows.append((b_rho + x * c - y * s, b_h + x * s + y * c, 1.0))
+        normal_rows.append((nx * c - ny * s, nx * s + ny * c, 0.0))
+    planar = np.array(rows + normal_rows)  # (10, 3)
+    frames = planar @ _finger_bases(spread)  # (3 fingers, 10, 3)
+    points = np.concatenate((_PALM_POINTS, frames[:, :CONTACTS_PER_FINGER].reshape(-1, 3)))
+    normals = np.concatenate((_PALM_NORMALS, frames[:, CONTACTS_PER_FINGER:].reshape(-1, 3)))
+    return points, normals
+
+
+def _finger_bases(spread: float) -> np.ndarray:
+    """(3, 3, 3): per finger, rows u_f (radial direction), z, o_f (knuckle axis point) in H."""
+    bases = []
+    for r, j, origin in _FINGER_CONSTANTS:
+        theta1 = r * spread - j * (math.pi / 2.0)
+        bases.append(((math.cos(theta1), math.sin(theta1), 0.0), (0.0, 0.0, 1.0), origin))
+    return np.array(bases)
+
+
+_FINGER_CONSTANTS = [(hand.FINGER_R[f], hand.FINGER_J[f], (hand.FINGER_R[f] * hand.AW, 0.0, hand.DW))
+                     for f in hand.FINGERS]
 
 
 def _to_hand_frame(spread, rho, height, n_rho, n_h):
