@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 import pytest
-from pydrake.math import RigidTransform
+from pydrake.math import RigidTransform, RotationMatrix
 
 from drake_grasp import cli
 from drake_grasp.grasps import GraspPlan, oracle_estimate, plan_compliant_grasp
@@ -78,3 +78,19 @@ def test_trial_cli_json_and_errors(capsys, tmp_path, monkeypatch):
     scenario_file.write_text("default:\n  protocol:\n    slip_distance: .nan\n")
     assert cli.main(["trial", "--object", "apple", "--grasp", "box", "--oracle", "--scenario", str(scenario_file)]) == 2
     assert "slip_distance" in capsys.readouterr().err
+
+
+def test_a_planned_grasp_runs_through_the_same_runner(short_scenario):
+    # A grasp "planned" in the object frame (hand base 0.3 m above the ball's centre, palm down, spread
+    # at 60 deg, fingers preshaped to 20 deg): the arm approaches from a retreat along the palm normal
+    # to exactly that pose (no contact guard), preshapes, closes, lifts and holds like any trial.
+    from drake_grasp.grasps import planned_grasp
+    from drake_grasp import hand
+
+    spec = paper_object("soccer_ball")
+    X_OH = RigidTransform(RotationMatrix.MakeXRotation(math.pi), [0, 0, 0.10 + hand.PALM_HEIGHT + 0.002])
+    q = np.array([math.radians(60)] * 2 + [math.radians(20)] * 3 + [math.radians(20) / 3] * 3)
+    record = run_trial(short_scenario, spec, lambda X_WO, s: planned_grasp(X_OH, q, X_WO), seed=0,
+                       method="eigengrasp", grasp="planned")
+    assert record.success, record.summary()
+    assert not record.approach_stopped_on_contact
