@@ -20,10 +20,12 @@ def main():
     parser.add_argument("--seeds", type=int, default=3)
     parser.add_argument("--workers", type=int)
     parser.add_argument("--out", default="out/oracle")
+    parser.add_argument("--scenario-name", default="default")
     args = parser.parse_args()
     out = pathlib.Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
-    specs = [TrialSpec(o, "oracle", g, s) for o in PAPER_OBJECTS for g in GRASPS for s in range(args.seeds)]
+    specs = [TrialSpec(o, "oracle", g, s, scenario_name=args.scenario_name)
+             for o in PAPER_OBJECTS for g in GRASPS for s in range(args.seeds)]
     table = run_trials(specs, out / "trials.csv", workers=args.workers, label="oracle")
     rows = table.rows()
     print(f"\n{'object':16s}" + "".join(f"{g:>24s}" for g in GRASPS))
