@@ -9,7 +9,7 @@ from pydrake.math import RigidTransform, RotationMatrix
 
 from baselines.eigengrasp import annealing, eigengrasps, energy, search_space
 from baselines.eigengrasp import virtual_contacts as vc
-from baselines.eigengrasp.object_distance import PrimitiveDistance
+from baselines.eigengrasp.object_distance import ConvexDistance, PrimitiveDistance
 from baselines.eigengrasp.planner import EigengraspPlanner, _add_unique
 from baselines.eigengrasp.scene import HandObjectScene
 from drake_grasp import cli, hand
@@ -162,6 +162,26 @@ def test_primitive_distances_match_drake():
                        key=lambda r: r.distance)
             assert d[i] == pytest.approx(best.distance, abs=1e-9), name
             np.testing.assert_allclose(g[i], np.asarray(best.grad_W).ravel(), atol=1e-6)
+
+
+def test_convex_distances_are_exact_or_flagged_lower_bounds():
+    spec = paper_object("spectacle_case")
+    scene = HandObjectScene(spec)
+    query = scene._query_port.Eval(scene._sg_context)
+    case_id = scene._drake_pieces[0]
+    rng = np.random.default_rng(5)
+    directions = rng.normal(size=(150, 3))
+    directions /= np.linalg.norm(directions, axis=1, keepdims=True)
+    points = directions * rng.uniform(0.0, 0.15, (150, 1))
+    d, g, exact = ConvexDistance(spec.pieces[0])(points)
+    assert exact.mean() > 0.9
+    for i, p in enumerate(points):
+        r = next(r for r in query.ComputeSignedDistanceToPoint(p) if r.id_G == case_id)
+        if exact[i]:
+            assert d[i] == pytest.approx(r.distance, abs=1e-7)
+            np.testing.assert_allclose(g[i], np.asarray(r.grad_W).ravel(), atol=1e-5)
+        else:
+            assert d[i] <= r.distance + 1e-9
 
 
 def test_scene_collision_test_and_drake_distances_for_a_convex_object():

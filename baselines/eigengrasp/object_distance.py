@@ -3,8 +3,10 @@
 The contact energy (DESIGN.md §7) needs, for each of the 19 virtual contacts, the vector to the
 closest point of the object. For the primitive pieces our objects are built of (sphere, box,
 cylinder, capsule; objects.py) the closest point has a closed form, evaluated here in numpy for
-all contacts and all pieces of a kind at once (the planner's inner loop). Other pieces (ellipsoids,
-convex meshes) are left to Drake's exact pair queries (scene.py).
+all contacts and all pieces of a kind at once (the planner's inner loop). For a convex mesh piece
+the distance is exact, in numpy, wherever the closest point lies inside a facet (or the point is
+inside the piece); the other points (closest point on an edge or a vertex) are flagged and left to
+Drake's exact pair queries (scene.py), as are ellipsoids.
 
 Conventions: points, distances in metres, in the object frame O. For each point the result is the
 signed distance to the union of the pieces (negative inside) and the unit outward gradient of that
@@ -16,6 +18,8 @@ Pure numpy, no Drake.
 from __future__ import annotations
 
 import numpy as np
+import trimesh
+from scipy.spatial import ConvexHull
 
 from drake_grasp.objects import ShapePiece
 
@@ -102,13 +106,13 @@ def _sphere(q, size):
 
 def _box(q, size):
     half = 0.5 * size[:, None, :]  # (M, 1, 3)
-    sign = np.where(q < 0.0, -1.0, 1.0)
     a = np.abs(q) - half
     out = np.maximum(a, 0.0)
     out_len = np.sqrt(np.einsum("mni,mni->mn", out, out))
+    if out_len.min() > 0.0:  # every point outside
+        return out_len, np.copysign(out, q) / out_len[..., None]
+    sign = np.where(q < 0.0, -1.0, 1.0)
     inside = out_len <= 0.0
-    if not inside.any():
-        return out_len, sign * out / out_len[..., None]
     a_max = a.max(axis=-1)
     d = out_len + np.minimum(a_max, 0.0)
     g = sign * out / np.maximum(out_len, _TINY)[..., None]
@@ -138,8 +142,19 @@ def _planar_box(rho, z_abs, radius, half_length):
 
 def _cylinder(q, size):
     x, y, z = q[..., 0], q[..., 1], q[..., 2]
-    rho = np.hypot(x, y)
-    d, g_r, g_z = _planar_box(rho, np.abs(z), size[:, 0:1], 0.5 * size[:, 1:2])
+    rho = np.sqrt(x * x + y * y)
+    radius, half_length = size[:, 0:1], 0.5 * size[:, 1:2]
+    o_r = np.maximum(rho - radius, 0.0)
+    o_z = np.maximum(np.abs(z) - half_length, 0.0)
+    out_len = np.sqrt(o_r * o_r + o_z * o_z)
+    if out_len.min() > 0.0 and rho.min() > _TINY:  # every point outside and off the axis
+        g = np.empty_like(q)
+        radial = o_r / (out_len * rho)
+        g[..., 0] = x * radial
+        g[..., 1] = y * radial
+        g[..., 2] = np.copysign(o_z / out_len, z)
+        return out_len, g
+    d, g_r, g_z = _planar_box(rho, np.abs(z), radius, half_length)
     safe = np.maximum(rho, _TINY)
     e_x = np.where(rho < _TINY, 1.0, x / safe)
     e_y = np.where(rho < _TINY, 0.0, y / safe)
@@ -158,6 +173,95 @@ def _capsule(q, size):
     if np.any(length < _TINY):
         g[length < _TINY] = (1.0, 0.0, 0.0)
     return d, g
+
+
+class ConvexDistance:
+    """Distances from points to one convex mesh piece, exact where the closest point is in a facet.
+
+    With the piece's hull as planes n_f · x + c_f ≤ 0 (unit n_f), the plane distance
+    s = max_f (n_f · q + c_f) is the exact signed distance for a point q inside, and for a point
+    outside whose projection q − s n_f onto the maximising facet's plane lies in that facet.
+    Otherwise the closest point x of that facet's boundary (an edge or a vertex) is the candidate,
+    and it is the closest point of the piece exactly when (q − x) · (v − x) ≤ 0 for every hull
+    vertex v (the optimality condition of a projection onto a convex set). Points that fail both
+    tests are flagged as not exact; their distance is then the plane distance, a lower bound.
+    """
+
+    def __init__(self, piece: ShapePiece, tolerance: float = 1e-9):
+        """
+        Args:
+            piece: A "convex" piece (its mesh_path's vertices, posed by X_OP).
+            tolerance: Slack of the in-facet test, m.
+        """
+        if piece.kind != "convex":
+            raise ValueError(f"expected a convex piece, got a {piece.kind}")
+        vertices = np.asarray(trimesh.load(piece.mesh_path, force="mesh", process=False).vertices, dtype=float)
+        hull = ConvexHull(vertices)
+        self._normals = hull.equations[:, :3].copy()  # (F, 3), unit, outward
+        self._offsets = hull.equations[:, 3].copy()  # (F,)
+        triangles = hull.points[hull.simplices]  # (F, 3, 3)
+        # In-plane outward normals of each facet's three edges, and their offsets.
+        edges = np.roll(triangles, -1, axis=1) - triangles
+        edge_normals = np.cross(edges, self._normals[:, None, :])
+        opposite = np.roll(triangles, -2, axis=1)
+        flip = np.einsum("fej,fej->fe", opposite - triangles, edge_normals) > 0.0
+        edge_normals[flip] *= -1.0
+        edge_normals /= np.linalg.norm(edge_normals, axis=2, keepdims=True)
+        self._edge_normals = edge_normals
+        self._edge_offsets = np.einsum("fej,fej->fe", edge_normals, triangles) + tolerance
+        self._triangles = triangles
+        self._edges = edges
+        self._edge_lengths_sq = np.einsum("fej,fej->fe", edges, edges)
+        self._vertices = hull.points[hull.vertices]
+        self._tolerance = tolerance
+        X_OP = piece.X_OP
+        self._R_OP = X_OP.rotation().matrix()
+        self._p_OP = X_OP.translation()
+
+    @property
+    def num_facets(self) -> int:
+        return len(self._normals)
+
+    def __call__(self, points_O: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Signed distances, outward unit gradients (in O) and which of them are exact.
+
+        Args:
+            points_O: (N, 3) query points in O, m.
+
+        Returns:
+            (distance (N,) m, gradient (N, 3), exact (N,) bool). Where not exact, the distance is
+            a lower bound of the true one and the gradient is the maximising facet's normal.
+        """
+        q = (points_O - self._p_OP) @ self._R_OP
+        s = q @ self._normals.T + self._offsets
+        rows = np.arange(len(q))
+        facet = np.argmax(s, axis=1)
+        d = s[rows, facet]
+        n = self._normals[facet]
+        foot = q - d[:, None] * n
+        in_facet = np.all(np.einsum("nej,nj->ne", self._edge_normals[facet], foot) <= self._edge_offsets[facet],
+                          axis=1)
+        exact = in_facet | (d <= 0.0)
+        if not exact.all():
+            # The closest point of the maximising facet's edges, checked against every vertex.
+            k = np.flatnonzero(~exact)
+            f = facet[k]
+            qk = q[k]
+            w = qk[:, None, :] - self._triangles[f]  # (K, 3 edges, 3)
+            t = np.clip(np.einsum("kej,kej->ke", w, self._edges[f]) / self._edge_lengths_sq[f], 0.0, 1.0)
+            offset = w - t[..., None] * self._edges[f]  # from the edge's closest point to q
+            dist_sq = np.einsum("kej,kej->ke", offset, offset)
+            e = np.argmin(dist_sq, axis=1)
+            g = offset[np.arange(len(k)), e]  # q − x
+            x = qk - g
+            lengths = np.sqrt(dist_sq[np.arange(len(k)), e])
+            worst = np.max(self._vertices @ g.T - np.einsum("kj,kj->k", x, g), axis=0)
+            ok = worst <= self._tolerance * lengths
+            ok_k = k[ok]
+            d[ok_k] = lengths[ok]
+            n[ok_k] = g[ok] / lengths[ok][:, None]
+            exact[ok_k] = True
+        return d, n @ self._R_OP.T, exact
 
 
 _DISTANCE = {"sphere": _sphere, "box": _box, "cylinder": _cylinder, "capsule": _capsule}

@@ -7,9 +7,10 @@ O is the world frame. Per annealing step the planner:
 1. sets the hand base pose X_OH and the 8 joint angles with one ``MultibodyPlant.SetPositions``;
 2. asks SceneGraph whether any hand link penetrates the object (``QueryObject.HasCollisions``, one
    call; collisions inside the hand are filtered, as in the dynamic model);
-3. gets the distance from each virtual contact to the object: in numpy for analytic pieces
-   (object_distance.py), and for other pieces (ellipsoids, convex meshes) by Drake's exact pair
-   query between the piece and a zero-radius sphere registered at the contact on its link.
+3. gets the distance from each virtual contact to the object: in numpy for analytic pieces and,
+   where the closest point lies in a facet, for convex mesh pieces (object_distance.py); for the
+   rest (convex pieces whose closest point is on an edge or vertex, ellipsoids) by Drake's exact
+   pair query between the piece and a zero-radius sphere registered at the contact on its link.
 
 The zero-radius spheres are only added when the object has such pieces; they also take part in
 ``HasCollisions``, which changes nothing: a contact sits on its link's surface, so it penetrates
@@ -26,7 +27,7 @@ from pydrake.multibody.parsing import Parser
 from pydrake.multibody.plant import AddMultibodyPlantSceneGraph
 from pydrake.systems.framework import DiagramBuilder
 
-from baselines.eigengrasp.object_distance import PrimitiveDistance
+from baselines.eigengrasp.object_distance import ConvexDistance, PrimitiveDistance
 from baselines.eigengrasp.virtual_contacts import VIRTUAL_CONTACTS
 from drake_grasp import hand
 from drake_grasp.contact import ContactParameters
@@ -56,8 +57,14 @@ class HandObjectScene:
         plant.WeldFrames(plant.world_frame(), object_body.body_frame())
         inspector = scene_graph.model_inspector()
         object_geometries = plant.GetCollisionGeometriesForBody(object_body)
+        # objects.object_sdf names piece i's collision "collision_{i}".
+        piece_of = {g: spec.pieces[int(inspector.GetName(g).rsplit("_", 1)[1])] for g in object_geometries}
         self._drake_pieces = [g for g in object_geometries
                               if not isinstance(inspector.GetShape(g), _ANALYTIC_SHAPES)]
+        # Convex pieces: numpy where exact, Drake elsewhere; other pieces (ellipsoids): Drake.
+        self._convex_pieces = [(g, ConvexDistance(piece_of[g])) for g in self._drake_pieces
+                               if piece_of[g].kind == "convex"]
+        self._other_pieces = [g for g in self._drake_pieces if piece_of[g].kind != "convex"]
         self._contact_geometries = []
         if self._drake_pieces:
             for i, c in enumerate(VIRTUAL_CONTACTS):
@@ -134,15 +141,28 @@ class HandObjectScene:
         distance, gradient = distance.copy(), gradient.copy()
         query = self._query_port.Eval(self._sg_context)
         pair_query = query.ComputeSignedDistancePairClosestPoints
-        for i, contact_id in enumerate(self._contact_geometries):
-            for piece_id in self._drake_pieces:
-                pair = pair_query(contact_id, piece_id)
-                if pair.distance < distance[i]:
-                    distance[i] = pair.distance
-                    # nhat_BA_W points from B toward A; make it point from the object to the contact.
-                    nhat = np.asarray(pair.nhat_BA_W)
-                    gradient[i] = nhat if pair.id_A == contact_id else -nhat
+        for piece_id, convex in self._convex_pieces:
+            d, g, exact = convex(points_O)
+            closer = d < distance  # d is exact or a lower bound: where it is not below, skip
+            take = closer & exact
+            distance[take] = d[take]
+            gradient[take] = g[take]
+            for i in np.flatnonzero(closer & ~exact):
+                self._pair_distance(pair_query, i, piece_id, distance, gradient)
+        for piece_id in self._other_pieces:
+            for i in range(len(points_O)):
+                self._pair_distance(pair_query, i, piece_id, distance, gradient)
         return distance, gradient
+
+    def _pair_distance(self, pair_query, i, piece_id, distance, gradient) -> None:
+        """Drake's exact distance from contact i to a piece, kept where it is the smallest."""
+        contact_id = self._contact_geometries[i]
+        pair = pair_query(contact_id, piece_id)
+        if pair.distance < distance[i]:
+            distance[i] = pair.distance
+            # nhat_BA_W points from B toward A; make it point from the object to the contact.
+            nhat = np.asarray(pair.nhat_BA_W)
+            gradient[i] = nhat if pair.id_A == contact_id else -nhat
 
     def hand_distance(self) -> float:
         """Smallest signed distance between a hand link and the object, m (slow; for checks)."""
