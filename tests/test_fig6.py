@@ -1,0 +1,38 @@
+"""Fig. 6's analysis: statistics, the algorithm's choice, the summary and the figure."""
+
+import json
+
+import pytest
+
+from drake_grasp.experiments import fig6
+
+
+def _row(obj, grasp, seed, success, sphere, cylinder, box):
+    extra = {"resemblance": {"sphere": sphere, "cylinder": cylinder, "box": box}}
+    return {"object": obj, "grasp": grasp, "seed": str(seed), "success": "1" if success else "0",
+            "extra": json.dumps(extra)}
+
+
+def test_choice_is_the_highest_mean_resemblance_and_summary_counts_its_successes(tmp_path):
+    rows = []
+    for seed in range(4):
+        for grasp in fig6.GRASPS:
+            # A ball: sphere resemblance high; only the spherical grasp holds it.
+            rows.append(_row("soccer_ball", grasp, seed, grasp == "spherical" or seed == 0, 0.95, 0.3, 0.2))
+            # A box: box resemblance high; all grasps hold it but one trial of the box grasp.
+            rows.append(_row("game_box", grasp, seed, not (grasp == "box" and seed == 3), 0.1, 0.4, 0.8))
+    stats = fig6.grasp_stats(rows, ["soccer_ball", "game_box"])
+    assert fig6.chosen_grasp(stats["soccer_ball"]) == "spherical"
+    assert fig6.chosen_grasp(stats["game_box"]) == "box"
+    assert stats["soccer_ball"]["cylindrical"].successes == 1
+    assert stats["game_box"]["box"].rate == pytest.approx(0.75)
+    lines = fig6.summary_lines(stats)
+    assert lines[-1].startswith("chosen grasps: 87.5% (7/8)")
+    assert "95.6%" in lines[-1]
+    paths = fig6.plot(stats, tmp_path)
+    assert all(p.exists() and p.stat().st_size > 1000 for p in paths)
+
+
+def test_config_rejects_no_trials():
+    with pytest.raises(ValueError, match="--trials"):
+        fig6.Fig6Config(objects=("apple",), trials=0)
