@@ -72,6 +72,43 @@ def _parser() -> argparse.ArgumentParser:
     _common(trial)
     trial.add_argument("--replay", metavar="FILE.html", help="write a Meshcat replay")
     trial.set_defaults(run=_run_trial)
+
+    fig6 = sub.add_parser(
+        "fig6",
+        help="Fig. 6: each compliant grasp's shape resemblance against its success, 9 objects",
+        description="For each object and each of the three compliant grasps, N trials of 'explore with "
+        "the wrist camera, then execute that grasp'. Writes fig6.csv (one row per trial, as they finish; "
+        "rerun to resume), fig6.png and fig6.svg, and a summary beside the paper's 95.6%% (86/90).",
+    )
+    fig6.add_argument("--quick", action="store_true", help="4 objects x 3 grasps x 2 trials")
+    fig6.add_argument("--trials", type=int, help="trials per object and grasp (default 10)")
+    fig6.add_argument("--workers", type=int, help="worker processes (default: all cores)")
+    fig6.add_argument("--method", choices=["compliant", "oracle"], default="compliant",
+                      help="compliant: camera estimates (the paper's algorithm); oracle: ground truth")
+    _common(fig6)
+    fig6.set_defaults(run=_run_fig6, out_default="out/fig6")
+
+    fig7 = sub.add_parser(
+        "fig7",
+        help="Fig. 7: the compliance-centric algorithm against GraspIt!'s Eigengrasp planner",
+        description="Plans each of six objects with the Eigengrasp planner (exact model and pose), "
+        "executes its three best grasps N times each through the same trial runner and success test as "
+        "the compliance-centric trials (reused from Fig. 6's results when present), and plots per object "
+        "the compliance-centric success, the planner's average and its best grasp. Resumable.",
+    )
+    fig7.add_argument("--quick", action="store_true", help="2 objects, 2 trials per grasp")
+    fig7.add_argument("--trials", type=int, help="executions of each planned grasp (default 10)")
+    fig7.add_argument("--workers", type=int, help="worker processes (default: all cores)")
+    fig7.add_argument("--steps", type=int, default=70_000,
+                      help="planner steps, GraspIt!'s counter (default 70000 = 40000 annealing iterations)")
+    fig7.add_argument("--energy", choices=["contact", "contact-quality"], default="contact",
+                      help="the planner's energy (default: contact, GraspIt!'s 'Hand Contacts')")
+    fig7.add_argument("--fig6", metavar="DIR", default="out/fig6",
+                      help="where Fig. 6's results are reused from (default out/fig6)")
+    fig7.add_argument("--compliant-method", choices=["compliant", "oracle"], default="compliant",
+                      help="estimates for compliance-centric trials run here (default: the camera)")
+    _common(fig7)
+    fig7.set_defaults(run=_run_fig7, out_default="out/fig7")
     eigengrasp = sub.add_parser(
         "plan-eigengrasp",
         help="plan grasps with GraspIt!'s Eigengrasp planner (the compliance-agnostic baseline)",
@@ -239,6 +276,97 @@ def _run_plan_eigengrasp(args) -> int:
               f"energy {g.energy:.2f}; eps {g.epsilon:.4f} after autograsp; fingers touching {g.fingers_touching}")
     print(f"planning time {plan.planning_time:.1f} s (annealing {plan.annealing_time:.1f} s, "
           f"autograsp {plan.autograsp_time:.1f} s)")
+    return 0
+
+
+def _check_sweep_args(args) -> None:
+    _check_seed(args.seed)
+    if args.workers is not None and args.workers < 1:
+        raise UsageError(f"--workers must be >= 1, got {args.workers}")
+    if args.trials is not None and args.trials < 1:
+        raise UsageError(f"--trials must be >= 1, got {args.trials}")
+
+
+def _scenario_args(args) -> tuple[str, str]:
+    _load_scenario(args)  # reject a bad scenario before any worker starts
+    return (str(pathlib.Path(args.scenario).resolve()) if args.scenario else ""), args.scenario_name
+
+
+def _run_fig6(args) -> int:
+    from drake_grasp.experiments import fig6
+    from drake_grasp.experiments.runner import run_trials
+    from drake_grasp.objects import PAPER_OBJECTS
+
+    _check_sweep_args(args)
+    scenario_file, scenario_name = _scenario_args(args)
+    objects = fig6.QUICK_OBJECTS if args.quick else PAPER_OBJECTS
+    trials = args.trials or (2 if args.quick else 10)
+    config = fig6.Fig6Config(objects=tuple(objects), trials=trials, seed=args.seed, method=args.method)
+    out = pathlib.Path(args.out or args.out_default)
+    out.mkdir(parents=True, exist_ok=True)
+    start = time.perf_counter()
+    table = run_trials(fig6.trial_specs(config, scenario_file, scenario_name), out / "fig6.csv",
+                       workers=args.workers, label="fig6")
+    wanted = {(s.object, s.method, s.grasp, str(s.seed)) for s in fig6.trial_specs(config)}
+    rows = [r for r in table.rows() if (r["object"], r["method"], r["grasp"], r["seed"]) in wanted]
+    stats = fig6.grasp_stats(rows, objects)
+    figures = fig6.plot(stats, out)
+    lines = fig6.summary_lines(stats)
+    wall = time.perf_counter() - start
+    if args.json:
+        print(json.dumps({"csv": str(out / "fig6.csv"), "figures": [str(p) for p in figures], "trials": len(rows),
+                          "wall_time": wall, "summary": lines}))
+    else:
+        print("\n".join(lines))
+        print(f"fig6: {len(rows)} trials, {wall:.0f} s; {out / 'fig6.csv'}, {figures[0]}, {figures[1]}")
+    return 0
+
+
+def _run_fig7(args) -> int:
+    from drake_grasp.experiments import fig6, fig7
+    from drake_grasp.experiments.results import ResultsTable
+    from drake_grasp.experiments.runner import TRIAL_FIELDS, TRIAL_KEY, run_trials
+
+    _check_sweep_args(args)
+    if args.steps is None or args.steps <= 30_000:
+        raise UsageError(f"--steps must be > 30000 (GraspIt!'s step counter starts there), got {args.steps}")
+    scenario_file, scenario_name = _scenario_args(args)
+    trials = args.trials or (2 if args.quick else 10)
+    config = fig7.Fig7Config(objects=fig7.QUICK_OBJECTS if args.quick else fig7.OBJECTS, trials=trials,
+                             seed=args.seed, steps=args.steps, energy=args.energy,
+                             compliant_method=args.compliant_method)
+    out = pathlib.Path(args.out or args.out_default)
+    out.mkdir(parents=True, exist_ok=True)
+    start = time.perf_counter()
+    plans = {obj: fig7.ensure_plan(out, obj, config) for obj in config.objects}
+    table = run_trials(fig7.eigengrasp_specs(plans, config, scenario_file, scenario_name), out / "fig7.csv",
+                       workers=args.workers, label="fig7")
+    # The compliance-centric side: Fig. 6's trials when they cover these objects, else run here.
+    f6_config = fig6.Fig6Config(objects=config.objects, trials=trials, seed=args.seed, method=config.compliant_method)
+    f6_specs = fig6.trial_specs(f6_config, scenario_file, scenario_name)
+    fig6_csv = pathlib.Path(args.fig6) / "fig6.csv"
+    reused = []
+    if fig6_csv.exists():
+        reused = ResultsTable(fig6_csv, TRIAL_FIELDS, TRIAL_KEY).rows()
+    have = {(r["object"], r["method"], r["grasp"], r["seed"]) for r in reused}
+    missing = [s for s in f6_specs if (s.object, s.method, s.grasp, str(s.seed)) not in have]
+    own = run_trials(missing, out / "fig7_compliant.csv", workers=args.workers, label="fig7 compliant").rows()
+    wanted = {(s.object, s.method, s.grasp, str(s.seed)) for s in f6_specs}
+    compliant_rows = [r for r in reused + own if (r["object"], r["method"], r["grasp"], r["seed"]) in wanted]
+    source = (f"{len(compliant_rows) - len(missing)} trials reused from {fig6_csv}, {len(missing)} run here"
+              f" (method {config.compliant_method})")
+    comparison = fig7.compare(config.objects, table.rows(), fig6.grasp_stats(compliant_rows, config.objects),
+                              config.energy)
+    figures = fig7.plot(comparison, out, config.energy)
+    lines = fig7.summary_lines(comparison, config.energy, source)
+    wall = time.perf_counter() - start
+    if args.json:
+        print(json.dumps(_jsonable({"csv": str(out / "fig7.csv"), "figures": [str(p) for p in figures],
+                                    "comparison": [dataclasses.asdict(c) for c in comparison],
+                                    "wall_time": wall, "summary": lines})))
+    else:
+        print("\n".join(lines))
+        print(f"fig7: {wall:.0f} s; {out / 'fig7.csv'}, {figures[0]}, {figures[1]}")
     return 0
 
 

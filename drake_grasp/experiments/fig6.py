@@ -58,6 +58,7 @@ class GraspStats:
     trials: int
     successes: int
     resemblance: float  # mean over trials (nan if none measured)
+    truth_class: str | None = None  # the object's true primitive class (oracle trials record it)
 
     @property
     def rate(self) -> float:
@@ -79,15 +80,25 @@ def grasp_stats(rows: list[dict], objects) -> dict[str, dict[str, GraspStats]]:
             mine = [r for r in rows if r["object"] == o and r["grasp"] == g]
             res = [_resemblance(r, g) for r in mine]
             res = [x for x in res if np.isfinite(x)]
+            truth = {json.loads(r.get("extra") or "{}").get("truth_class") for r in mine} - {None}
             out[o][g] = GraspStats(len(mine), sum(str(r["success"]) in ("1", "True") for r in mine),
-                                   float(np.mean(res)) if res else float("nan"))
+                                   float(np.mean(res)) if res else float("nan"),
+                                   truth.pop() if len(truth) == 1 else None)
     return out
 
 
 def chosen_grasp(stats: dict[str, GraspStats]) -> str | None:
-    """The algorithm's choice for an object: the grasp with the highest mean resemblance."""
+    """The algorithm's choice for an object: the grasp with the highest mean resemblance.
+
+    Oracle trials measure no resemblance: their choice is the grasp of the object's true class.
+    """
     measured = {g: s.resemblance for g, s in stats.items() if np.isfinite(s.resemblance)}
-    return max(measured, key=measured.get) if measured else None
+    if measured:
+        return max(measured, key=measured.get)
+    for g, s in stats.items():
+        if s.truth_class is not None and RESEMBLANCE_OF[g] == s.truth_class:
+            return g
+    return None
 
 
 def summary_lines(stats: dict[str, dict[str, GraspStats]]) -> list[str]:

@@ -76,7 +76,10 @@ def run_one(spec: TrialSpec) -> dict:
     row["object"] = spec.object  # the name the sweep asked for (a path stays a path)
     for key in ("finger_angles", "breakaway", "variation"):
         row[key] = json.dumps(row[key])
-    row["extra"] = json.dumps(spec.planned or {})
+    extra = dict(spec.planned or {})
+    if spec.method == "oracle":
+        extra["truth_class"] = obj.closest_primitive
+    row["extra"] = json.dumps(extra)
     return row
 
 
