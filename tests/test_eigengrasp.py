@@ -14,6 +14,7 @@ from baselines.eigengrasp.planner import EigengraspPlanner, _add_unique
 from baselines.eigengrasp.scene import HandObjectScene
 from drake_grasp import cli, hand
 from drake_grasp.objects import paper_object, resolve_object, sphere_object
+from drake_grasp.quality import friction_cone_edges, wrench_space_quality
 
 # The palm on top of a 10 cm sphere, facing down, 0.5 mm above it.
 X_OP_ON_SPHERE = RigidTransform(RotationMatrix.MakeXRotation(math.pi), [0.0, 0.0, 0.0505])
@@ -229,7 +230,13 @@ def test_contact_quality_energy_on_plain_arrays():
     distances = np.zeros(4)
     e = energy.contact_quality_energy(normals, distances, normals, [1.0, 1.0, 1.0, 0.2])
     assert e < 0.0
-    assert e == pytest.approx(-energy.force_space_epsilon(normals, [1.0, 1.0, 1.0, 0.2], [2.0] * 4))
+    edges = friction_cone_edges(normals, [1.0, 1.0, 1.0, 0.2], 8)
+    assert e == pytest.approx(-energy.force_space_epsilon(edges, [2.0] * 4))
+    assert e == pytest.approx(-wrench_space_quality(2.0 * edges.reshape(-1, 3)).epsilon)
+    # The cones may come in any frame: turning every cone together changes nothing.
+    R = (RotationMatrix.MakeXRotation(0.3) @ RotationMatrix.MakeZRotation(0.7)).matrix()
+    assert -energy.force_space_epsilon(edges @ R.T, [2.0] * 4) == pytest.approx(e)
+    assert energy.contact_quality_energy(normals, distances, normals, [1.0] * 4, lambda: edges @ R.T) == pytest.approx(e)
     # With two close contacts the energy is the contact energy.
     far = np.array([0.0, 0.0, 0.2, 0.2])
     assert energy.contact_quality_energy(normals, far, normals, [1.0] * 4) == pytest.approx(

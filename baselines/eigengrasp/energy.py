@@ -87,12 +87,12 @@ def quality_scale(distances, cosines) -> np.ndarray:
     return np.where((d_mm <= QUALITY_DISTANCE_MM) & (cosines >= QUALITY_MIN_COSINE), sf, 0.0)
 
 
-def force_space_epsilon(normals, friction, scale) -> float:
+def force_space_epsilon(edges, scale) -> float:
     """ε of the force-only (3-D) L1 wrench space of scaled friction cones.
 
     Args:
-        normals: (N, 3) unit directions of the contact forces (the virtual contacts' normals).
-        friction: (N,) friction coefficients.
+        edges: (N, m, 3) friction-cone edges of the contacts (normal component 1), in any frame
+            (ε does not depend on it), e.g. from ``drake_grasp.quality.friction_cone_edges``.
         scale: (N,) factors the cones are scaled by; contacts with factor 0 add nothing.
 
     Returns:
@@ -103,13 +103,17 @@ def force_space_epsilon(normals, friction, scale) -> float:
     used = scale > 0.0
     if np.count_nonzero(used) == 0:
         return 0.0
-    edges = friction_cone_edges(np.asarray(normals, dtype=float)[used], np.asarray(friction)[used],
-                                QUALITY_CONE_EDGES)
+    edges = np.asarray(edges, dtype=float)[used]
     forces = (edges * scale[used][:, None, None]).reshape(-1, 3)
+    # Cheap rejection: when every force has a non-negative component along some direction (the
+    # mean force, or a contact's cone axis), the origin is not strictly inside the hull.
+    directions = np.vstack((forces.mean(axis=0), edges.mean(axis=1)))
+    if np.any(np.all(forces @ directions.T >= 0.0, axis=0)):
+        return 0.0
     return wrench_space_quality(forces).epsilon
 
 
-def contact_quality_energy(normals, distances, directions, friction) -> float:
+def contact_quality_energy(normals, distances, directions, friction, cone_edges=None) -> float:
     """GraspIt!'s "Contacts AND Quality" energy.
 
     Args:
@@ -117,6 +121,11 @@ def contact_quality_energy(normals, distances, directions, friction) -> float:
         distances: (N,) contact-to-object distances, m.
         directions: (N, 3) unit vectors from each contact toward its closest object point.
         friction: (N,) friction coefficient of each contact.
+        cone_edges: (N, m, 3) the contacts' friction-cone edges, in any frame, or a function
+            returning them (called only when needed); default: built from ``normals`` and
+            ``friction`` with ``QUALITY_CONE_EDGES`` edges. GraspIt!'s virtual
+            contacts carry their edges in their link frames; the planner passes edges built in the
+            hand frame, so the linearised cones turn with the hand.
 
     Returns:
         −ε (≤ 0) of the sf-scaled force space when at least 3 contacts have sf > 0.25, else the
@@ -127,4 +136,9 @@ def contact_quality_energy(normals, distances, directions, friction) -> float:
     if np.count_nonzero(sf > QUALITY_COUNT_FACTOR) < QUALITY_MIN_CONTACTS:
         n = len(cosines)
         return float(np.abs(distances).sum() * MM_PER_M + NORMAL_WEIGHT * (n - cosines.sum())) / n
-    return -force_space_epsilon(normals, friction, sf)
+    if callable(cone_edges):
+        cone_edges = cone_edges()
+    elif cone_edges is None:
+        cone_edges = friction_cone_edges(np.asarray(normals, dtype=float), np.asarray(friction, dtype=float),
+                                         QUALITY_CONE_EDGES)
+    return -force_space_epsilon(cone_edges, sf)

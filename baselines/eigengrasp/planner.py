@@ -36,7 +36,7 @@ from baselines.eigengrasp.virtual_contacts import FRICTION, contact_frames_for_p
 from drake_grasp import hand
 from drake_grasp.contact import ContactParameters
 from drake_grasp.objects import ObjectSpec
-from drake_grasp.quality import grasp_quality
+from drake_grasp.quality import friction_cone_edges, grasp_quality
 from drake_grasp.quasistatic import Contact, QuasiStaticHand
 
 NUM_PLANNED_GRASPS = 3  # the paper executes the three best grasps (DESIGN §1, §7).
@@ -194,6 +194,7 @@ class EigengraspPlanner:
         self._quasistatic: QuasiStaticHand | None = None
         self._posture_key = None
         self._posture_frames = None
+        self._posture_cones = None
         self.setup_time = time.perf_counter() - start
 
     # --- The energy of a state (the inner loop). --------------------------------------------------
@@ -204,7 +205,15 @@ class EigengraspPlanner:
         if key != self._posture_key:
             self._posture_key = key
             self._posture_frames = contact_frames_for_posture(spread, flex, distal)
+            self._posture_cones = None
         return self._posture_frames
+
+    def _cone_edges(self) -> np.ndarray:
+        """Friction-cone edges of the contacts in the hand frame, for the posture last set."""
+        if self._posture_cones is None:
+            self._posture_cones = friction_cone_edges(self._posture_frames[1], FRICTION,
+                                                      energy.QUALITY_CONE_EDGES)
+        return self._posture_cones
 
     def evaluate(self, state) -> float | None:
         """The energy of a state, or None when the hand penetrates the object.
@@ -241,7 +250,8 @@ class EigengraspPlanner:
             directions = -gradients * np.where(distances < 0.0, -1.0, 1.0)[:, None]
         if self.energy_name == "contact":
             return energy.contact_energy(normals, distances, directions)
-        return energy.contact_quality_energy(normals, distances, directions, FRICTION)
+        # The cones are built in the hand frame (they turn with the hand); ε does not depend on the frame.
+        return energy.contact_quality_energy(normals, distances, directions, FRICTION, self._cone_edges)
 
     # --- Annealing. -----------------------------------------------------------------------------
 
