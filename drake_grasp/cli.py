@@ -171,7 +171,8 @@ def _run_demo(args) -> int:
     spec = resolve_object(args.object)
     scenario.object.name = args.object
     mode = ComplianceMode.parse(args.mode) if args.mode else None
-    result = run_demo(scenario, mode=mode, replay_html=str(replay) if replay else None, object_spec=spec)
+    result = run_demo(scenario, mode=mode, replay_html=str(replay) if replay else None, object_spec=spec,
+                      seed=args.seed)
     record = dataclasses.asdict(result)
     if args.out:
         out = pathlib.Path(args.out)

@@ -59,6 +59,7 @@ class TrialRecord:
     contacts_at_end: str = ""
     finger_angles: list = dataclasses.field(default_factory=list)  # [spread, prox 1..3, distal 1..3]
     breakaway: list = dataclasses.field(default_factory=list)
+    breakaway_angles: list = dataclasses.field(default_factory=list)  # proximal angle at breakaway (nan: none)
     approach_stopped_on_contact: bool = False
     estimate_source: str = ""
     variation: dict = dataclasses.field(default_factory=dict)
@@ -204,6 +205,7 @@ def run_trial(scenario: Scenario, spec: ObjectSpec, plan_function: PlanFunction,
     record.finger_angles = [float(q_hand[0])] + [float(a) for a in q_hand[2:8]]
     status = diagram_station.GetOutputPort("hand.finger_status").Eval(diagram_station.GetMyContextFromRoot(context))
     record.breakaway = [bool(b > 0.5) for b in status[:3]]
+    record.breakaway_angles = [float(a) for a in status[3:]]
     if X_PO_hold is not None:
         slip = X_PO_hold.inverse() @ X_PO()
         record.slip_distance = float(np.linalg.norm(X_PO().translation() - X_PO_hold.translation()))

@@ -9,6 +9,7 @@ same sweep after an interruption computes only the missing trials.
 import concurrent.futures
 import dataclasses
 import json
+import math
 import multiprocessing
 import os
 import pathlib
@@ -20,7 +21,7 @@ from drake_grasp.experiments.results import ResultsTable
 TRIAL_FIELDS = [
     "object", "method", "grasp", "seed", "success", "failure", "lift", "slip_distance", "slip_angle",
     "contacts_after_close", "contacts_at_end", "approach_stopped_on_contact", "estimate_source",
-    "finger_angles", "breakaway", "variation", "sim_time", "wall_time", "detail", "extra",
+    "finger_angles", "breakaway", "breakaway_angles", "variation", "sim_time", "wall_time", "detail", "extra",
 ]
 TRIAL_KEY = ["object", "method", "grasp", "seed"]
 
@@ -74,13 +75,24 @@ def run_one(spec: TrialSpec) -> dict:
     record = run_trial(scenario, obj, plan, seed=spec.seed, method=spec.method, grasp=spec.grasp)
     row = dataclasses.asdict(record)
     row["object"] = spec.object  # the name the sweep asked for (a path stays a path)
-    for key in ("finger_angles", "breakaway", "variation"):
-        row[key] = json.dumps(row[key])
+    for key in ("finger_angles", "breakaway", "breakaway_angles", "variation"):
+        row[key] = json.dumps(_finite(row[key]))
     extra = dict(spec.planned or {})
     if spec.method == "oracle":
         extra["truth_class"] = obj.closest_primitive
     row["extra"] = json.dumps(extra)
     return row
+
+
+def _finite(value):
+    """NaN and inf as None, so that the JSON cells are standard JSON."""
+    if isinstance(value, float):
+        return value if math.isfinite(value) else None
+    if isinstance(value, dict):
+        return {k: _finite(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_finite(v) for v in value]
+    return value
 
 
 def run_trials(specs: list[TrialSpec], csv_path: pathlib.Path, workers: int | None = None,
