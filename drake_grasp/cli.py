@@ -126,6 +126,8 @@ def _parser() -> argparse.ArgumentParser:
                             help="annealing energy: GraspIt!'s hand-contact energy (default) or "
                             "contacts-and-quality")
     _common(eigengrasp, scenario=False)
+    eigengrasp.add_argument("--table", action="store_true",
+                            help="the object rests on a table (nominal pose): states touching it are illegal")
     eigengrasp.set_defaults(run=_run_plan_eigengrasp)
     return parser
 
@@ -257,7 +259,7 @@ def _run_plan_eigengrasp(args) -> int:
     if args.energy not in ENERGIES:
         raise UsageError(f"unknown --energy {args.energy!r} (choose from {', '.join(ENERGIES)})")
     spec = resolve_object(args.object)
-    plan = EigengraspPlanner(spec, args.energy).plan(steps, seed=args.seed)
+    plan = EigengraspPlanner(spec, args.energy, table=args.table).plan(steps, seed=args.seed)
     record = plan.to_dict()
     if args.out:
         out = pathlib.Path(args.out)

@@ -1304,3 +1304,26 @@ def AddObject(plant, spec: ObjectSpec, contact: ContactParameters | None = None)
     parser.SetStrictParsing()
     (model,) = parser.AddModelsFromString(object_sdf(spec, contact), "sdf")
     return model
+
+
+SUPPORT_TABLE_SIZE = (2.0, 2.0, 0.1)  # m: a slab large enough to be the table under any object
+
+
+def RegisterSupportTable(plant, spec: ObjectSpec, friction: float = 0.5):
+    """Registers (before Finalize) the table the object rests on, in a plant whose world frame is
+    the object frame O: an anchored slab whose top is the table plane of the object's nominal
+    resting pose (z_T = 0 at -rest_height below O, tilted by R_TO). Returns its geometry id.
+
+    For kinematic queries (planning, quasi-static closing) that must respect the table.
+    """
+    from pydrake.geometry import Box, ProximityProperties, AddContactMaterial
+    from pydrake.multibody.plant import CoulombFriction
+
+    R_OT = spec.R_TO.inverse()
+    p_OT = R_OT @ np.array([0.0, 0.0, -spec.rest_height])
+    X_OT = RigidTransform(R_OT, p_OT)
+    X_TS = RigidTransform([0.0, 0.0, -SUPPORT_TABLE_SIZE[2] / 2])
+    properties = ProximityProperties()
+    AddContactMaterial(friction=CoulombFriction(friction, friction), properties=properties)
+    return plant.RegisterCollisionGeometry(plant.world_body(), X_OT @ X_TS, Box(*SUPPORT_TABLE_SIZE),
+                                           "support_table", properties)

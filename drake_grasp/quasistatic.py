@@ -36,7 +36,7 @@ from drake_grasp import hand
 from drake_grasp.contact import ContactParameters
 from drake_grasp.hand import ComplianceMode
 from drake_grasp.modelgen import HAND_SDF
-from drake_grasp.objects import AddObject, ObjectSpec
+from drake_grasp.objects import AddObject, ObjectSpec, RegisterSupportTable
 from drake_grasp.paths import RegisterPackage
 
 CONTACT_TOLERANCE = 1.0e-3  # m: a link closer than this to the object touches it.
@@ -99,7 +99,14 @@ class QuasiStaticHand:
     rebuilt. The object frame O is the world frame here.
     """
 
-    def __init__(self, spec: ObjectSpec, contact: ContactParameters | None = None):
+    def __init__(self, spec: ObjectSpec, contact: ContactParameters | None = None, table: bool = False):
+        """
+        Args:
+            spec: the object; its frame O is the world frame here.
+            contact: its contact parameters (they do not change the queries).
+            table: add the table the object rests on (its nominal pose) as an obstacle: the hand
+                stops on it like on the object, but only object contacts are reported.
+        """
         self.spec = spec
         builder = DiagramBuilder()
         plant, scene_graph = AddMultibodyPlantSceneGraph(builder, time_step=0.0)
@@ -108,6 +115,7 @@ class QuasiStaticHand:
         object_instance = AddObject(plant, spec, contact or ContactParameters())
         object_body = plant.get_body(plant.GetBodyIndices(object_instance)[0])
         plant.WeldFrames(plant.world_frame(), object_body.body_frame())
+        self._table_geometries = {RegisterSupportTable(plant, spec)} if table else set()
         plant.Finalize()
         self._plant = plant
         self._diagram = builder.Build()
@@ -144,11 +152,13 @@ class QuasiStaticHand:
     def _query(self):
         return self._scene_graph.get_query_output_port().Eval(self._sg_context)
 
-    def _link_distance(self, query, link: str):
-        """(signed distance, witness pair) between a hand link and the object."""
+    def _link_distance(self, query, link: str, obstacles: bool = True):
+        """(signed distance, witness pair) between a hand link and the object (and the table, if
+        there is one and `obstacles`)."""
         best, best_pair = math.inf, None
+        others = self._object_geometries | self._table_geometries if obstacles else self._object_geometries
         for g_link in self._link_geometries[link]:
-            for g_object in self._object_geometries:
+            for g_object in others:
                 pair = query.ComputeSignedDistancePairClosestPoints(g_link, g_object)
                 if pair.distance < best:
                     best, best_pair = pair.distance, pair
@@ -159,7 +169,7 @@ class QuasiStaticHand:
             joint.set_angle(self._plant_context, float(angle))
 
     def hand_distance(self) -> tuple[float, str]:
-        """Smallest signed distance from any hand link to the object, m, and that link."""
+        """Smallest signed distance from any hand link to the object (or the table), m, and that link."""
         query = self._query()
         return min((self._link_distance(query, link)[0], link) for link in self._link_geometries)
 
@@ -255,7 +265,7 @@ class QuasiStaticHand:
         query = self._query()
         contacts = []
         for link in self._link_geometries:
-            distance, pair = self._link_distance(query, link)
+            distance, pair = self._link_distance(query, link, obstacles=False)
             if distance > CONTACT_TOLERANCE:
                 continue
             # Witness points are in each geometry's frame; the object frame is the world here.

@@ -351,3 +351,16 @@ def test_cli_bad_input_is_one_line_and_exit_2(capsys, args, message):
     assert cli.main(["plan-eigengrasp", *args]) == 2
     err = capsys.readouterr().err
     assert len(err.strip().splitlines()) == 1 and message in err
+
+
+def test_planning_with_the_table_keeps_the_hand_above_it():
+    from baselines.eigengrasp.planner import plan_eigengrasp
+    from drake_grasp.objects import paper_object
+    from drake_grasp.quasistatic import QuasiStaticHand
+
+    spec = paper_object("sponge")
+    plan = plan_eigengrasp(spec, max_steps=32_000, seed=1, table=True)
+    check = QuasiStaticHand(spec, table=True)
+    for grasp in plan.grasps:
+        check.set_hand(grasp.X_OH, grasp.pregrasp_joint_angles)
+        assert check.hand_distance()[0] >= 0.0

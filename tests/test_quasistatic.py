@@ -95,3 +95,16 @@ def test_grasps_are_repeatable_and_the_diagram_is_reused():
     c = sim.grasp(X_ABOVE, ComplianceMode.SPHERICAL)
     np.testing.assert_array_equal(a.joint_angles, c.joint_angles)
     assert not np.allclose(a.joint_angles, b.joint_angles)
+
+
+def test_with_the_table_the_fingers_stop_on_it_and_no_table_contact_is_reported():
+    from drake_grasp.objects import paper_object
+
+    spec = paper_object("sponge")  # 3.5 cm tall: closing from right above it reaches the table
+    free = QuasiStaticHand(spec).grasp(X_ABOVE, ComplianceMode.SPHERICAL)
+    on_table = QuasiStaticHand(spec, table=True)
+    grasp = on_table.grasp(X_ABOVE, ComplianceMode.SPHERICAL)
+    _assert_no_penetration(on_table, grasp)  # neither the sponge nor the table is penetrated
+    assert all(c.link != "support_table" for c in grasp.contacts)
+    # Without the table the fingertips close past the table plane; with it they stop before.
+    assert np.any(free.joint_angles[2:] > grasp.joint_angles[2:] + math.radians(5))

@@ -172,7 +172,8 @@ class EigengraspPlan:
 class EigengraspPlanner:
     """The planner for one object; build once, plan as often as needed."""
 
-    def __init__(self, spec: ObjectSpec, energy_name: str = "contact", contact: ContactParameters | None = None):
+    def __init__(self, spec: ObjectSpec, energy_name: str = "contact", contact: ContactParameters | None = None,
+                 table: bool = False):
         """
         Args:
             spec: The object (exact model, planned in its frame O).
@@ -190,7 +191,8 @@ class EigengraspPlanner:
         self.energy_name = energy_name
         self._contact = contact or ContactParameters()
         self.friction = spec.friction if spec.friction is not None else self._contact.friction
-        self.scene = HandObjectScene(spec, self._contact)
+        self.table = table
+        self.scene = HandObjectScene(spec, self._contact, table=table)
         self._quasistatic: QuasiStaticHand | None = None
         self._posture_key = None
         self._posture_frames = None
@@ -320,7 +322,7 @@ class EigengraspPlanner:
     def quasistatic(self) -> QuasiStaticHand:
         """The quasi-static hand used by autograsp (built on first use)."""
         if self._quasistatic is None:
-            self._quasistatic = QuasiStaticHand(self.spec, self._contact)
+            self._quasistatic = QuasiStaticHand(self.spec, self._contact, table=self.table)
         return self._quasistatic
 
     def autograsp(self, state, state_energy: float = math.nan, step: int = -1) -> PlannedGrasp:
@@ -389,7 +391,7 @@ def _check_steps(max_steps) -> int:
 
 
 def plan_eigengrasp(spec: ObjectSpec, max_steps: int = annealing.DEFAULT_MAX_STEPS, seed: int = 0,
-                    energy_name: str = "contact") -> EigengraspPlan:
+                    energy_name: str = "contact", table: bool = False) -> EigengraspPlan:
     """Plans grasps of an object with GraspIt!'s Eigengrasp planner (see the module docstring).
 
     Args:
@@ -397,5 +399,8 @@ def plan_eigengrasp(spec: ObjectSpec, max_steps: int = annealing.DEFAULT_MAX_STE
         max_steps: GraspIt!'s step limit (default 70,000 = 40,000 iterations from k = 30,000).
         seed: Seed of the random generator; the same seed gives the same plan.
         energy_name: "contact" or "contact-quality".
+        table: the object rests on a table (its nominal pose): hand states that collide with the
+            table are illegal too, and autograsp stops on it — as in a GraspIt! world with the table
+            loaded as an obstacle.
     """
-    return EigengraspPlanner(spec, energy_name).plan(max_steps, seed=seed)
+    return EigengraspPlanner(spec, energy_name, table=table).plan(max_steps, seed=seed)

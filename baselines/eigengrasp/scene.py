@@ -32,7 +32,7 @@ from baselines.eigengrasp.virtual_contacts import VIRTUAL_CONTACTS
 from drake_grasp import hand
 from drake_grasp.contact import ContactParameters
 from drake_grasp.modelgen import HAND_SDF
-from drake_grasp.objects import AddObject, ObjectSpec
+from drake_grasp.objects import AddObject, ObjectSpec, RegisterSupportTable
 from drake_grasp.paths import RegisterPackage
 
 HAND_LINKS = ("bh_base",) + tuple(f"bh_finger_{f}_{p}" for f in hand.FINGERS for p in ("knuckle", "proximal", "distal"))
@@ -42,11 +42,13 @@ _ANALYTIC_SHAPES = (Sphere, Box, Cylinder, Capsule)
 class HandObjectScene:
     """A free BarrettHand and a fixed object, with fast pose setting and queries."""
 
-    def __init__(self, spec: ObjectSpec, contact: ContactParameters | None = None):
+    def __init__(self, spec: ObjectSpec, contact: ContactParameters | None = None, table: bool = False):
         """
         Args:
             spec: The object; its frame O becomes the world frame.
             contact: Contact parameters of the object model (they do not affect the queries).
+            table: Add the table under the object's nominal resting pose: a hand touching it is in
+                collision too (the virtual contacts' distances stay distances to the object).
         """
         self.spec = spec
         builder = DiagramBuilder()
@@ -55,6 +57,8 @@ class HandObjectScene:
         object_instance = AddObject(plant, spec, contact or ContactParameters())
         object_body = plant.get_body(plant.GetBodyIndices(object_instance)[0])
         plant.WeldFrames(plant.world_frame(), object_body.body_frame())
+        if table:
+            RegisterSupportTable(plant, spec)
         inspector = scene_graph.model_inspector()
         object_geometries = plant.GetCollisionGeometriesForBody(object_body)
         # objects.object_sdf names piece i's collision "collision_{i}".
@@ -121,7 +125,7 @@ class HandObjectScene:
                                X_OH.translation(), joint_angles)
 
     def in_collision(self) -> bool:
-        """Whether any hand link (or virtual contact) penetrates the object."""
+        """Whether any hand link (or virtual contact) penetrates the object (or the table)."""
         return self._query_port.Eval(self._sg_context).HasCollisions()
 
     def contact_distances(self, points_O: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

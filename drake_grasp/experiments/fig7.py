@@ -1,7 +1,8 @@
 """Fig. 7 of the paper: the compliance-centric algorithm against a compliance-agnostic planner.
 
 For the six modelled objects, GraspIt!'s Eigengrasp planner (our reimplementation,
-`baselines.eigengrasp`) gets the exact object model and pose, anneals for 70,000 steps and closes
+`baselines.eigengrasp`) gets the exact object model and pose (the object resting on the table, which
+the planner treats as an obstacle, as a GraspIt! world with the table loaded would), anneals for 70,000 steps and closes
 its best states with autograsp; its three best grasps are each executed N times (default 10) by the
 same trial runner as the compliance-centric trials: same arm, hand controller, timings, per-trial
 seeds and success test. Reported per object: the compliance-centric success (the chosen grasp's, from
@@ -56,7 +57,7 @@ class Fig7Config:
 
 
 def plan_path(out_dir: pathlib.Path, obj: str, config: Fig7Config) -> pathlib.Path:
-    return out_dir / "plans" / f"{obj}_{config.energy}_{config.steps}_seed{config.seed}.json"
+    return out_dir / "plans" / f"{obj}_{config.energy}_{config.steps}_seed{config.seed}_table.json"
 
 
 def ensure_plan(out_dir: pathlib.Path, obj: str, config: Fig7Config, progress=sys.stderr) -> dict:
@@ -69,7 +70,7 @@ def ensure_plan(out_dir: pathlib.Path, obj: str, config: Fig7Config, progress=sy
         return json.loads(path.read_text())
     start = time.perf_counter()
     plan = plan_eigengrasp(resolve_object(obj), max_steps=config.steps, seed=config.seed,
-                           energy_name=config.energy).to_dict()
+                           energy_name=config.energy, table=True).to_dict()
     path.parent.mkdir(parents=True, exist_ok=True)
     tmp = path.with_suffix(".tmp")
     tmp.write_text(json.dumps(plan, indent=1))
