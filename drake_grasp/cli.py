@@ -341,7 +341,8 @@ def _run_fig7(args) -> int:
     out = pathlib.Path(args.out or args.out_default)
     out.mkdir(parents=True, exist_ok=True)
     start = time.perf_counter()
-    plans = {obj: fig7.ensure_plan(out, obj, config) for obj in config.objects}
+    plans = {obj: fig7.ensure_plan(out, obj, config, scenario_file=scenario_file, scenario_name=scenario_name)
+             for obj in config.objects}
     table = run_trials(fig7.eigengrasp_specs(plans, config, scenario_file, scenario_name), out / "fig7.csv",
                        workers=args.workers, label="fig7")
     # The compliance-centric side: Fig. 6's trials when they cover these objects, else run here.

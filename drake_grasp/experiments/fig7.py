@@ -60,8 +60,10 @@ def plan_path(out_dir: pathlib.Path, obj: str, config: Fig7Config) -> pathlib.Pa
     return out_dir / "plans" / f"{obj}_{config.energy}_{config.steps}_seed{config.seed}_table.json"
 
 
-def ensure_plan(out_dir: pathlib.Path, obj: str, config: Fig7Config, progress=sys.stderr) -> dict:
-    """The planner's result for an object (planned once, then read back from its JSON file)."""
+def ensure_plan(out_dir: pathlib.Path, obj: str, config: Fig7Config, progress=sys.stderr,
+                scenario_file: str = "", scenario_name: str = "default") -> dict:
+    """The planner's result for an object (planned once, then read back from its JSON file), with
+    the grasps to execute under "executed" (the three best the arm can reach)."""
     from baselines.eigengrasp.planner import plan_eigengrasp
     from drake_grasp.objects import resolve_object
 
@@ -71,14 +73,54 @@ def ensure_plan(out_dir: pathlib.Path, obj: str, config: Fig7Config, progress=sy
     start = time.perf_counter()
     plan = plan_eigengrasp(resolve_object(obj), max_steps=config.steps, seed=config.seed,
                            energy_name=config.energy, table=True).to_dict()
+    plan["executed"] = reachable_grasps(plan, obj, scenario_file, scenario_name)
     path.parent.mkdir(parents=True, exist_ok=True)
     tmp = path.with_suffix(".tmp")
     tmp.write_text(json.dumps(plan, indent=1))
     tmp.replace(path)
     eps = ", ".join(f"{g['epsilon']:.3f}" for g in plan["grasps"])
+    ranks = ", ".join(str(g["planner_rank"]) for g in plan["executed"])
     print(f"fig7: planned {obj} ({config.energy}, {config.steps} steps) in {time.perf_counter() - start:.0f} s; "
-          f"eps after autograsp [{eps}]", file=progress, flush=True)
+          f"eps of the top 3 after autograsp [{eps}]; executing ranks [{ranks}] of {len(plan['candidates'])} "
+          "(the best the arm can reach)", file=progress, flush=True)
     return plan
+
+
+def reachable_grasps(plan: dict, obj: str, scenario_file: str = "", scenario_name: str = "default",
+                     count: int = 3) -> list[dict]:
+    """The `count` best of the plan's ranked candidates that the WAM can execute.
+
+    The planner moves a free hand (DESIGN.md §7) and knows nothing of the arm: some of its best
+    grasps come from beyond the object, where the WAM cannot take the hand. As a user of GraspIt!
+    would, we execute the best grasps the arm can reach: pre-grasp and grasp poses solvable by
+    inverse kinematics with the object at its nominal pose. Each returned grasp dict gets its rank in
+    the planner's list ("planner_rank").
+    """
+    import numpy as np
+    from pydrake.math import RigidTransform
+
+    from drake_grasp.control.arm_motion import ArmKinematics, ReachError
+    from drake_grasp.grasps import planned_grasp
+    from drake_grasp.objects import resolve_object
+    from drake_grasp.station import DEFAULT_SCENARIO_FILE, MakeStation, load_scenario
+
+    scenario = load_scenario(scenario_file or DEFAULT_SCENARIO_FILE, scenario_name)
+    station = MakeStation(scenario, resolve_object(obj), camera=False)
+    kinematics = ArmKinematics(station.plant, station.wam)
+    X_WO = station.X_WO_nominal()
+    q_start = np.asarray(scenario.protocol.start_configuration, float)
+    chosen = []
+    for rank, grasp in enumerate(plan["candidates"], start=1):
+        grasp_plan = planned_grasp(RigidTransform(np.asarray(grasp["X_OH"])), np.asarray(grasp["joint_angles"]), X_WO)
+        try:
+            q = kinematics.solve(grasp_plan.X_WP_pregrasp, q_start)
+            kinematics.solve(grasp_plan.X_WP_target, q)
+        except ReachError:
+            continue
+        chosen.append(dict(grasp, planner_rank=rank))
+        if len(chosen) == count:
+            break
+    return chosen
 
 
 def eigengrasp_specs(plans: dict, config: Fig7Config, scenario_file="", scenario_name="default"):
@@ -86,9 +128,9 @@ def eigengrasp_specs(plans: dict, config: Fig7Config, scenario_file="", scenario
 
     specs = []
     for obj, plan in plans.items():
-        for rank, grasp in enumerate(plan["grasps"], start=1):
+        for rank, grasp in enumerate(plan["executed"], start=1):
             planned = {"X_OH": grasp["X_OH"], "joint_angles": grasp["pregrasp_joint_angles"],
-                       "epsilon": grasp["epsilon"], "energy": config.energy}
+                       "epsilon": grasp["epsilon"], "energy": config.energy, "planner_rank": grasp["planner_rank"]}
             for i in range(config.trials):
                 specs.append(TrialSpec(obj, "eigengrasp", f"{config.energy}#{rank}", config.seed + i,
                                        scenario_file, scenario_name, planned))
