@@ -360,7 +360,7 @@ def _run_fig7(args) -> int:
     source = (f"{len(compliant_rows) - len(missing)} trials reused from {fig6_csv}, {len(missing)} run here"
               f" (method {config.compliant_method})")
     comparison = fig7.compare(config.objects, table.rows(), fig6.grasp_stats(compliant_rows, config.objects),
-                              config.energy)
+                              config.plan_tag)
     figures = fig7.plot(comparison, out, config.energy)
     lines = fig7.summary_lines(comparison, config.energy, source)
     wall = time.perf_counter() - start

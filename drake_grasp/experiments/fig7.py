@@ -49,6 +49,11 @@ class Fig7Config:
     energy: str = "contact"
     compliant_method: str = "compliant"
 
+    @property
+    def plan_tag(self) -> str:
+        """Names the plan in trial records, so that trials of another plan are never mixed in."""
+        return f"{self.energy}/{self.steps}/seed{self.seed}"
+
     def __post_init__(self):
         if self.trials < 1:
             raise ValueError(f"fig7: --trials must be >= 1, got {self.trials}")
@@ -132,7 +137,7 @@ def eigengrasp_specs(plans: dict, config: Fig7Config, scenario_file="", scenario
             planned = {"X_OH": grasp["X_OH"], "joint_angles": grasp["pregrasp_joint_angles"],
                        "epsilon": grasp["epsilon"], "energy": config.energy, "planner_rank": grasp["planner_rank"]}
             for i in range(config.trials):
-                specs.append(TrialSpec(obj, "eigengrasp", f"{config.energy}#{rank}", config.seed + i,
+                specs.append(TrialSpec(obj, "eigengrasp", f"{config.plan_tag}#{rank}", config.seed + i,
                                        scenario_file, scenario_name, planned))
     return specs
 
@@ -151,10 +156,10 @@ class Comparison:
     per_grasp: dict
 
 
-def compare(objects, eigen_rows: list[dict], compliant_stats: dict, energy: str) -> list[Comparison]:
+def compare(objects, eigen_rows: list[dict], compliant_stats: dict, plan_tag: str) -> list[Comparison]:
     out = []
     for obj in objects:
-        mine = [r for r in eigen_rows if r["object"] == obj and r["grasp"].startswith(energy + "#")]
+        mine = [r for r in eigen_rows if r["object"] == obj and r["grasp"].startswith(plan_tag + "#")]
         per_grasp = {}
         for r in mine:
             ok, n = per_grasp.get(r["grasp"], (0, 0))
@@ -194,7 +199,7 @@ def plot(rows: list[Comparison], out_dir: pathlib.Path, energy: str) -> list[pat
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    fig, ax = plt.subplots(figsize=(1.5 * len(rows) + 2, 4))
+    fig, ax = plt.subplots(figsize=(max(6.0, 1.5 * len(rows) + 2), 4))
     x = np.arange(len(rows))
     width = 0.26
     series = [("compliance-centric", [c.compliant for c in rows], "tab:orange"),
@@ -209,7 +214,8 @@ def plot(rows: list[Comparison], out_dir: pathlib.Path, energy: str) -> list[pat
     ax.set_ylabel("success (%)")
     ax.legend(fontsize=7, loc="upper right")
     ax.grid(alpha=0.3, axis="y")
-    ax.set_title("Fig. 7: compliance-centric grasps vs. the Eigengrasp planner (same runner, same test)")
+    ax.set_title("Fig. 7: compliance-centric grasps vs. the Eigengrasp planner\n(same arm, controller, seeds and success test)",
+                 fontsize=9)
     fig.tight_layout()
     paths = [out_dir / "fig7.png", out_dir / "fig7.svg"]
     for path in paths:
