@@ -1,0 +1,573 @@
+"""Active perception with the wrist camera: the exploration Diagram and one exploration.
+
+The paper's perception (Sec. 4) as one Drake Diagram around the station:
+
+    station.camera.label_image ─┐
+    station.camera.X_WC ────────┴─> SilhouetteCamera (fixed rate) ──camera_sample──┐
+        ┌───────────────────────────────────────────────────────────────────────────┘
+        ├─> DepthPrimitive ──centre──┬─> PrincipalAxisPrimitive ──axis──┐
+        │                            └────────────────────────────────┬─┴─> Sphere/Cylinder/Box
+        │                                                             │     ResemblancePrimitive
+        └─> ExplorationSequencer ──commands──> (every primitive)      │
+    every primitive ──V_C_desired──> Adder ──> CameraTwistController ──> station.wam.desired_state
+
+`AddVisualPrimitives` adds the camera, the five primitives, the twist sum and the camera motion
+controller to a builder that holds a station (a grasp supervisor can reuse it and drive the
+primitives' `command` ports itself); `AddExplorationSequencer` adds the phase machine that drives them
+here. `run_exploration` builds it all for one scenario, starts the camera above the table looking
+down at a point, simulates the exploration, and returns an `ObjectEstimate`. `ground_truth` and
+`compare` measure it against the object's true pose and geometry.
+
+Choices (rates, gains, arcs, phase durations, score tolerances) live in
+diagrams/perception.scenarios.yaml (`PerceptionConfig`).
+"""
+
+
+import dataclasses
+import math
+import pathlib
+import time
+
+import numpy as np
+from pydrake.common.yaml import yaml_load_typed
+from pydrake.geometry import Meshcat, MeshcatVisualizer, MeshcatVisualizerParams, Role
+from pydrake.math import RigidTransform, RotationMatrix
+from pydrake.systems.analysis import Simulator
+from pydrake.systems.framework import DiagramBuilder, EventStatus
+from pydrake.systems.primitives import Adder, ConstantVectorSource
+
+from drake_grasp.control.arm_motion import ArmKinematics
+from drake_grasp.control.camera_motion import CameraMotionParams, CameraTwistController
+from drake_grasp.hand import HAND_JOINTS, HandAction
+from drake_grasp.objects import ObjectSpec
+from drake_grasp.paths import DIAGRAMS_DIR
+from drake_grasp.primitives.camera import SegmentationParams, SilhouetteCamera
+from drake_grasp.primitives.camera_model import CameraIntrinsics
+from drake_grasp.primitives.depth import DepthParams, DepthPrimitive
+from drake_grasp.primitives.principal_axis import PrincipalAxisParams, PrincipalAxisPrimitive
+from drake_grasp.primitives.resemblance import DEFAULT_ARCS, ResemblanceParams, ShapeResemblancePrimitive
+from drake_grasp.primitives.scores import SHAPES, ScoreParams
+from drake_grasp.primitives.sequencer import ExplorationSequencer, Phase, SequencerParams, phase_value
+from drake_grasp.station import MakeStation, Scenario, Station, object_rest_pose
+
+DEFAULT_CONFIG_FILE = DIAGRAMS_DIR / "perception.scenarios.yaml"
+
+
+@dataclasses.dataclass
+class PerceptionConfig:
+    """Every choice of the exploration. Load with `load_perception_config`."""
+
+    rate_hz: float = 20.0
+    start_height: float = 0.45
+    segmentation: SegmentationParams = dataclasses.field(default_factory=SegmentationParams)
+    sequencer: SequencerParams = dataclasses.field(default_factory=SequencerParams)
+    depth: DepthParams = dataclasses.field(default_factory=DepthParams)
+    axis: PrincipalAxisParams = dataclasses.field(default_factory=PrincipalAxisParams)
+    sphere: ResemblanceParams = dataclasses.field(default_factory=lambda: dataclasses.replace(DEFAULT_ARCS["sphere"]))
+    cylinder: ResemblanceParams = dataclasses.field(
+        default_factory=lambda: dataclasses.replace(DEFAULT_ARCS["cylinder"]))
+    box: ResemblanceParams = dataclasses.field(default_factory=lambda: dataclasses.replace(DEFAULT_ARCS["box"]))
+    scores: ScoreParams = dataclasses.field(default_factory=ScoreParams)
+    camera_motion: CameraMotionParams = dataclasses.field(default_factory=CameraMotionParams)
+    start_configuration: list[float] = dataclasses.field(default_factory=lambda: [0.0, 0.6, 0.0, 1.6, 0.0, 0.9, 0.0])
+
+    @property
+    def period(self) -> float:
+        return 1.0 / self.rate_hz
+
+    def validate(self) -> None:
+        if not (math.isfinite(self.rate_hz) and 10.0 <= self.rate_hz <= 30.0):
+            raise ValueError(f"rate_hz must be in [10, 30] Hz, got {self.rate_hz}")
+        if not (math.isfinite(self.start_height) and self.start_height > 0):
+            raise ValueError(f"start_height must be positive, got {self.start_height}")
+        if len(self.start_configuration) != 7:
+            raise ValueError("start_configuration needs 7 joint angles")
+        self.segmentation.validate()
+        self.sequencer.validate()
+        for shape in SHAPES:
+            getattr(self, shape).validate()
+
+
+def load_perception_config(filename: str | pathlib.Path = DEFAULT_CONFIG_FILE,
+                           name: str = "default") -> PerceptionConfig:
+    """Loads the named configuration from a YAML file of named configurations.
+
+    Raises:
+        ValueError: (one line) if the file cannot be read or does not match the schema.
+    """
+    filename = pathlib.Path(filename)
+    try:
+        text = filename.read_text()
+    except OSError as e:
+        raise ValueError(f"{filename}: cannot read perception config ({e.strerror})") from None
+    try:
+        config = yaml_load_typed(schema=PerceptionConfig, data=text, child_name=name, defaults=PerceptionConfig())
+    except Exception as e:  # yaml_load_typed raises with multi-line messages
+        first_line = str(e).strip().splitlines()[0] if str(e).strip() else type(e).__name__
+        raise ValueError(f"{filename}: perception config '{name}' is malformed: {first_line}") from None
+    config.validate()
+    return config
+
+
+# --- The Diagram -------------------------------------------------------------------------------------
+
+
+@dataclasses.dataclass
+class VisualPrimitives:
+    """The systems `AddVisualPrimitives` added (to read their ports or drive their commands)."""
+
+    camera: SilhouetteCamera
+    depth: DepthPrimitive
+    axis: PrincipalAxisPrimitive
+    resemblance: dict[str, ShapeResemblancePrimitive]
+    twist_sum: Adder
+    camera_motion: CameraTwistController
+
+    def primitives(self) -> list:
+        return [self.depth, self.axis] + [self.resemblance[s] for s in SHAPES]
+
+
+def object_labels(station: Station) -> list[int]:
+    """The render labels of the object's bodies (the station labels each body by its index)."""
+    return [int(i) for i in station.plant.GetBodyIndices(station.object_instance)]
+
+
+def camera_mount(station: Station) -> tuple:
+    """(frame F, X_FC): the plant frame the wrist camera is fixed to, and the camera's pose in it."""
+    frame = station.plant.GetFrameByName("wrist_camera")
+    return frame, station.scenario.camera.X_PB.GetDeterministicValue()
+
+
+def AddVisualPrimitives(builder: DiagramBuilder, station: Station, station_system, config: PerceptionConfig
+                        ) -> VisualPrimitives:
+    """Adds the fixed-rate camera, the primitives, the twist sum and the camera motion controller.
+
+    Connects the station's camera outputs to the camera, and the controller to the station's
+    `wam.desired_state`. The primitives' `command` inputs are left for the caller to drive.
+
+    Args:
+        builder: the builder that holds `station_system`.
+        station: the station (MakeStation with camera=True).
+        station_system: the station's Diagram as added to `builder`.
+        config: the choices.
+    """
+    intrinsics = CameraIntrinsics.from_camera_config(station.scenario.camera)
+    period = config.period
+    camera = builder.AddNamedSystem(
+        "silhouette_camera", SilhouetteCamera(intrinsics, object_labels(station), period, config.segmentation))
+    image_port = "camera.label_image" if config.segmentation.method == "label" else "camera.color_image"
+    builder.Connect(station_system.GetOutputPort(image_port), camera.get_input_port(0))
+    builder.Connect(station_system.GetOutputPort("camera.X_WC"), camera.GetInputPort("X_WC"))
+
+    depth = builder.AddNamedSystem("depth_primitive", DepthPrimitive(intrinsics, period, config.depth))
+    axis = builder.AddNamedSystem("principal_axis_primitive", PrincipalAxisPrimitive(intrinsics, period, config.axis))
+    resemblance = {
+        shape: builder.AddNamedSystem(f"{shape}_resemblance_primitive", ShapeResemblancePrimitive(
+            shape, intrinsics, period, getattr(config, shape), config.scores))
+        for shape in SHAPES
+    }
+    primitives = [depth, axis] + [resemblance[s] for s in SHAPES]
+    for primitive in primitives:
+        builder.Connect(camera.GetOutputPort("camera_sample"), primitive.GetInputPort("camera_sample"))
+    builder.Connect(depth.GetOutputPort("centre"), axis.GetInputPort("centre"))
+    builder.Connect(axis.GetOutputPort("axis"), depth.GetInputPort("axis"))
+    for shape in SHAPES:
+        builder.Connect(depth.GetOutputPort("centre"), resemblance[shape].GetInputPort("centre"))
+        builder.Connect(axis.GetOutputPort("axis"), resemblance[shape].GetInputPort("axis"))
+
+    twist_sum = builder.AddNamedSystem("camera_twist_sum", Adder(len(primitives), 6))
+    for i, primitive in enumerate(primitives):
+        builder.Connect(primitive.GetOutputPort("V_C_desired"), twist_sum.get_input_port(i))
+    frame, X_FC = camera_mount(station)
+    camera_motion = builder.AddNamedSystem("camera_motion", CameraTwistController(
+        station.plant, station.wam, frame, X_FC, config.camera_motion))
+    builder.Connect(twist_sum.get_output_port(), camera_motion.GetInputPort("V_C_desired"))
+    builder.Connect(camera_motion.GetOutputPort("wam.desired_state"), station_system.GetInputPort("wam.desired_state"))
+    return VisualPrimitives(camera, depth, axis, resemblance, twist_sum, camera_motion)
+
+
+def AddExplorationSequencer(builder: DiagramBuilder, primitives: VisualPrimitives, config: PerceptionConfig
+                            ) -> ExplorationSequencer:
+    """Adds the phase machine and connects its commands to the primitives."""
+    sequencer = builder.AddNamedSystem("exploration_sequencer", ExplorationSequencer(config.period, config.sequencer))
+    builder.Connect(primitives.camera.GetOutputPort("camera_sample"), sequencer.GetInputPort("camera_sample"))
+    builder.Connect(sequencer.GetOutputPort("depth_command"), primitives.depth.GetInputPort("command"))
+    builder.Connect(sequencer.GetOutputPort("axis_command"), primitives.axis.GetInputPort("command"))
+    for shape in SHAPES:
+        builder.Connect(sequencer.GetOutputPort("resemblance_command"),
+                        primitives.resemblance[shape].GetInputPort("command"))
+    return sequencer
+
+
+@dataclasses.dataclass
+class Exploration:
+    """A built exploration: the Diagram and handles to what is inside it."""
+
+    diagram: object
+    station: Station
+    station_system: object
+    primitives: VisualPrimitives
+    sequencer: ExplorationSequencer
+    config: PerceptionConfig
+    meshcat: Meshcat | None = None
+
+
+def MakeExploration(scenario: Scenario, config: PerceptionConfig, object_spec: ObjectSpec | None = None, *,
+                    meshcat: Meshcat | None = None) -> Exploration:
+    """The station (with its camera), the primitives and the sequencer; the hand held open."""
+    station = MakeStation(scenario, object_spec, camera=True)
+    builder = DiagramBuilder()
+    station_system = builder.AddNamedSystem("station", station.diagram)
+    primitives = AddVisualPrimitives(builder, station, station_system, config)
+    sequencer = AddExplorationSequencer(builder, primitives, config)
+    hand = builder.AddNamedSystem("hand_open", ConstantVectorSource([0.0, float(HandAction.OPEN)]))
+    builder.Connect(hand.get_output_port(), station_system.GetInputPort("hand.command"))
+    if meshcat is not None:
+        MeshcatVisualizer.AddToBuilder(builder, station_system.GetOutputPort("query_object"), meshcat,
+                                       MeshcatVisualizerParams(role=Role.kIllustration))
+    diagram = builder.Build()
+    diagram.set_name("exploration")
+    return Exploration(diagram, station, station_system, primitives, sequencer, config, meshcat)
+
+
+def start_camera_pose(look_at_W: np.ndarray, config: PerceptionConfig, table_height: float = 0.0) -> RigidTransform:
+    """The camera `config.start_height` above the table over the point `look_at_W` (x, y used),
+    looking straight down, its x axis along the world's x (image u along x, v along −y)."""
+    p = np.array([look_at_W[0], look_at_W[1], table_height + config.start_height])
+    return RigidTransform(RotationMatrix(np.diag([1.0, -1.0, -1.0])), p)
+
+
+def start_configuration(station: Station, X_WC: RigidTransform, config: PerceptionConfig) -> np.ndarray:
+    """Arm joint angles that put the camera at X_WC (inverse kinematics of the palm)."""
+    plant = station.plant
+    context = plant.CreateDefaultContext()
+    frame, X_FC = camera_mount(station)
+    palm = plant.GetFrameByName(HAND_JOINTS.palm_frame)
+    X_CP = (frame.CalcPoseInWorld(context) @ X_FC).inverse() @ palm.CalcPoseInWorld(context)
+    return ArmKinematics(plant, station.wam).solve(X_WC @ X_CP, np.asarray(config.start_configuration))
+
+
+# --- The result --------------------------------------------------------------------------------------
+
+
+@dataclasses.dataclass
+class ObjectEstimate:
+    """What one exploration found (world frame W; m, rad, s).
+
+    Attributes:
+        status: "ok", or "object not found" (the object never came into view).
+        centre: the object centre (where the rays through the silhouette centroids meet), or None.
+        depth: distance from `camera_position` (the camera at the end) to the centre.
+        camera_position: where the camera was when the exploration ended.
+        principal_axis: unit vector of the object's long axis, or None if the object is not elongated.
+        axes: 3×3, columns (a, b, c): a = the principal axis (or, for a round object, the direction of
+            a silhouette side), b = horizontal across it, c = a × b (up).
+        extents: the object's size along a, b, c: length and width from the silhouette's tangent
+            planes; height = twice the centre's height above the table (it rests on the table).
+        resemblances: {"sphere", "cylinder", "box"} → resemblance in [0, 1].
+        evidence: what the resemblances rest on (variations, invariances, roundness; see scores).
+        elongation: the mean eccentricity of the silhouette over the depth/axis phase.
+        timings: build, simulated and wall-clock times, frames rendered, phase start times.
+    """
+
+    status: str
+    centre: np.ndarray | None = None
+    depth: float = math.nan
+    camera_position: np.ndarray | None = None
+    principal_axis: np.ndarray | None = None
+    axes: np.ndarray | None = None
+    extents: np.ndarray | None = None
+    resemblances: dict = dataclasses.field(default_factory=dict)
+    evidence: dict = dataclasses.field(default_factory=dict)
+    elongation: float = math.nan
+    timings: dict = dataclasses.field(default_factory=dict)
+
+    @property
+    def found(self) -> bool:
+        return self.status == "ok"
+
+    @property
+    def best_shape(self) -> str | None:
+        """The shape with the highest resemblance (the compliant grasp to execute), or None."""
+        if not self.resemblances:
+            return None
+        return max(SHAPES, key=lambda s: self.resemblances.get(s, 0.0))
+
+    def as_grasp_estimate(self):
+        """This estimate as `drake_grasp.grasps.ObjectEstimate` (what the compliant grasps take)."""
+        from drake_grasp.grasps import ObjectEstimate as GraspEstimate
+
+        if not self.found:
+            raise ValueError("no estimate: the object was not found")
+        return GraspEstimate(center=np.array(self.centre), R_WB=np.array(self.axes), size=np.array(self.extents),
+                             principal_axis=None if self.principal_axis is None else np.array(self.principal_axis),
+                             source="camera")
+
+    def to_dict(self) -> dict:
+        """Plain data (lists, floats) for JSON."""
+
+        def plain(x):
+            if isinstance(x, np.ndarray):
+                return x.tolist()
+            if isinstance(x, dict):
+                return {k: plain(v) for k, v in x.items()}
+            if isinstance(x, (list, tuple)):
+                return [plain(v) for v in x]
+            if isinstance(x, (np.floating, np.integer)):
+                return x.item()
+            return x
+
+        return {f.name: plain(getattr(self, f.name)) for f in dataclasses.fields(self)}
+
+
+@dataclasses.dataclass
+class ExplorationResult:
+    """One exploration: the estimate, and (for evaluation only) where the object really was.
+
+    Attributes:
+        estimate: what the primitives found.
+        X_WO_start, X_WO_end: the object's true pose at the start and at the end (a round object
+            can roll a little on the table while it is looked at).
+    """
+
+    estimate: ObjectEstimate
+    X_WO_start: RigidTransform
+    X_WO_end: RigidTransform
+
+
+def run_exploration(scenario: Scenario, config: PerceptionConfig | None = None, object_spec: ObjectSpec | None = None,
+                    *, look_at: np.ndarray | None = None, replay_html: str | None = None) -> ObjectEstimate:
+    """Builds the exploration for `scenario`, runs it once, returns the estimate (see `explore`)."""
+    return explore(scenario, config, object_spec, look_at=look_at, replay_html=replay_html).estimate
+
+
+def explore(scenario: Scenario, config: PerceptionConfig | None = None, object_spec: ObjectSpec | None = None,
+            *, look_at: np.ndarray | None = None, replay_html: str | None = None) -> ExplorationResult:
+    """Builds the exploration for `scenario` and runs it once.
+
+    Deterministic: the same inputs give the same estimate (nothing here is random; per-trial
+    variation of the object's placement is the caller's, in `scenario.object`).
+
+    Args:
+        scenario: the station scenario; `scenario.object` places the object.
+        config: the choices (default: diagrams/perception.scenarios.yaml, "default").
+        object_spec: the object, when already resolved.
+        look_at: the point the camera starts above (default: the placement's x, y — where the object
+            is expected; a trial passes the nominal placement, not the varied one).
+        replay_html: if given, write a Meshcat replay of the exploration there.
+    """
+    config = config or load_perception_config()
+    wall_start = time.perf_counter()
+    meshcat = Meshcat() if replay_html else None
+    exploration = MakeExploration(scenario, config, object_spec, meshcat=meshcat)
+    station = exploration.station
+    if look_at is None:
+        look_at = np.array([scenario.object.x, scenario.object.y, 0.0])
+    table_height = config.depth.table_height
+    q0 = start_configuration(station, start_camera_pose(look_at, config, table_height), config)
+
+    simulator = Simulator(exploration.diagram)
+    context = simulator.get_mutable_context()
+    plant = station.plant
+    plant_context = plant.GetMyMutableContextFromRoot(context)
+    plant.SetPositions(plant_context, station.wam, q0)
+    station.hand_controller.SetInitialFingers(station.hand_controller.GetMyMutableContextFromRoot(context))
+    motion = exploration.primitives.camera_motion
+    motion.SetInitialPositions(motion.GetMyMutableContextFromRoot(context), q0)
+    sequencer = exploration.sequencer
+    sequencer_context = sequencer.GetMyContextFromRoot(context)
+    simulator.set_monitor(lambda root: EventStatus.ReachedTermination(sequencer, "exploration over")
+                          if sequencer.state(sequencer_context).phase.finished else EventStatus.Succeeded())
+    object_body = plant.get_body(plant.GetBodyIndices(station.object_instance)[0])
+    X_WO_start = object_body.EvalPoseInWorld(plant_context)
+    build_time = time.perf_counter() - wall_start
+
+    if meshcat is not None:
+        meshcat.StartRecording()
+    sim_start = time.perf_counter()
+    simulator.AdvanceTo(config.sequencer.total_time + 1.0)
+    sim_wall = time.perf_counter() - sim_start
+    if meshcat is not None:
+        meshcat.StopRecording()
+        meshcat.PublishRecording()
+        pathlib.Path(replay_html).write_text(meshcat.StaticHtml())
+
+    state = sequencer.state(sequencer_context)
+    timings = {
+        "build_time": build_time,
+        "sim_time": context.get_time(),
+        "sim_wall_time": sim_wall,
+        "wall_time": time.perf_counter() - wall_start,
+        "frames": exploration.primitives.camera.frames,
+        "phase_starts": {Phase(p).name.lower(): t for p, t in state.phase_starts},
+    }
+    return ExplorationResult(read_estimate(exploration, context, timings), X_WO_start,
+                             object_body.EvalPoseInWorld(plant_context))
+
+
+def read_estimate(exploration: Exploration, context, timings: dict | None = None) -> ObjectEstimate:
+    """The ObjectEstimate that the primitives' outputs hold in `context` (the exploration's root context)."""
+    primitives = exploration.primitives
+    sequencer = exploration.sequencer
+
+    def output(system, name):
+        return np.array(system.GetOutputPort(name).Eval(system.GetMyContextFromRoot(context)), dtype=float)
+
+    phase = phase_value(output(sequencer, "phase")[0])
+    timings = dict(timings or {})
+    centre = output(primitives.depth, "centre")
+    if phase == Phase.NOT_FOUND or not np.all(np.isfinite(centre)):
+        return ObjectEstimate(status="object not found", timings=timings)
+    X_WC = exploration.station_system.GetOutputPort("camera.X_WC").Eval(
+        exploration.station_system.GetMyContextFromRoot(context))
+    camera_position = X_WC.translation().copy()
+    axis = output(primitives.axis, "axis")
+    elongated, mean_eccentricity, _ = output(primitives.axis, "axis_info")
+    extents = output(primitives.depth, "extents")
+    up = np.array([0.0, 0.0, 1.0])
+    a = axis if np.all(np.isfinite(axis)) else np.array([1.0, 0.0, 0.0])
+    if elongated < 0.5:  # not a principal axis: a silhouette side, taken horizontal
+        a = a - a[2] * up
+        a = a / np.linalg.norm(a) if np.linalg.norm(a) > 1e-6 else np.array([1.0, 0.0, 0.0])
+    b = np.cross(up, a)
+    if np.linalg.norm(b) < 1e-6:  # a vertical axis: any horizontal b
+        b = np.array([0.0, 1.0, 0.0])
+    b /= np.linalg.norm(b)
+    c = np.cross(a, b)
+    resemblances = {s: float(output(primitives.resemblance[s], "resemblance")[0]) for s in SHAPES}
+    evidence_vector = output(primitives.resemblance["box"], "evidence")
+    names = ("variation_a", "variation_b", "eccentricity_0", "invariance_a", "invariance_b", "roundness")
+    evidence = {n: float(v) for n, v in zip(names, evidence_vector)}
+    return ObjectEstimate(
+        status="ok", centre=centre, depth=float(np.linalg.norm(centre - camera_position)),
+        camera_position=camera_position, principal_axis=a.copy() if elongated > 0.5 else None,
+        axes=np.column_stack([a, b, c]), extents=extents, resemblances=resemblances,
+        evidence=evidence, elongation=float(mean_eccentricity), timings=timings)
+
+
+# --- Ground truth ------------------------------------------------------------------------------------
+
+
+def _shape_support(kind: str, size: tuple, mesh_vertices: np.ndarray | None, u: np.ndarray) -> float:
+    """Support function h(u) = max over the shape of u·x, for a Drake shape in its own frame."""
+    if kind == "sphere":
+        return size[0]
+    if kind == "ellipsoid":
+        return float(np.linalg.norm(np.asarray(size) * u))
+    if kind == "box":
+        return float(0.5 * np.abs(u) @ np.asarray(size))
+    if kind in ("cylinder", "capsule"):
+        radius, length = size
+        lateral = math.hypot(u[0], u[1])
+        return 0.5 * length * abs(u[2]) + radius * (lateral if kind == "cylinder" else 1.0)
+    return float(np.max(mesh_vertices @ u))
+
+
+def object_support(spec: ObjectSpec, X_WO: RigidTransform, u_W: np.ndarray) -> float:
+    """max over the object of u·p (world), for a world direction u: the object's support function."""
+    import trimesh
+
+    best = -math.inf
+    for piece in spec.pieces:
+        X_WP = X_WO @ piece.X_OP
+        R = X_WP.rotation().matrix()
+        vertices = None
+        if piece.kind == "convex":
+            vertices = np.asarray(trimesh.load(piece.mesh_path, force="mesh", process=False).vertices, float)
+        h = float(np.dot(u_W, X_WP.translation())) + _shape_support(piece.kind, piece.size, vertices, R.T @ u_W)
+        best = max(best, h)
+    return best
+
+
+def object_extent(spec: ObjectSpec, X_WO: RigidTransform, u_W: np.ndarray) -> float:
+    """The object's extent along the unit world direction u, m."""
+    u = np.asarray(u_W, float) / np.linalg.norm(u_W)
+    return object_support(spec, X_WO, u) + object_support(spec, X_WO, -u)
+
+
+@dataclasses.dataclass
+class GroundTruth:
+    """The object as it really is (world frame): centre of mass, principal axis (or None), extents
+    (length, width, height: along the principal axis or the longer side of the smallest horizontal
+    bounding rectangle, across it, and vertically), and the closest primitive shape."""
+
+    centre: np.ndarray
+    principal_axis: np.ndarray | None
+    extents: np.ndarray
+    shape: str | None
+
+
+def ground_truth(spec: ObjectSpec, X_WO: RigidTransform) -> GroundTruth:
+    up = np.array([0.0, 0.0, 1.0])
+    height = object_extent(spec, X_WO, up)
+    axis = None
+    if spec.principal_axis is not None:
+        axis = X_WO.rotation().matrix() @ np.asarray(spec.principal_axis)
+        horizontal = axis - axis[2] * up
+        directions = [math.atan2(horizontal[1], horizontal[0])]
+    else:
+        directions = np.linspace(0.0, math.pi / 2.0, 91)
+    best = None
+    for theta in directions:
+        u = np.array([math.cos(theta), math.sin(theta), 0.0])
+        v = np.array([-math.sin(theta), math.cos(theta), 0.0])
+        lu, lv = object_extent(spec, X_WO, u), object_extent(spec, X_WO, v)
+        if best is None or lu * lv < best[0] * best[1] - 1e-12:
+            best = (lu, lv)
+    length, width = best if axis is not None else sorted(best, reverse=True)
+    return GroundTruth(X_WO.translation().copy(), axis, np.array([length, width, height]), spec.closest_primitive)
+
+
+@dataclasses.dataclass
+class EstimateErrors:
+    """An estimate against the truth.
+
+    Attributes:
+        centre: distance between the estimated and true centre, m.
+        depth: relative depth error, (estimated − true distance) / true distance, from the final camera.
+        axis_deg: angle between the estimated and true principal axes (None unless both exist).
+        extents: relative errors of (length, width, height), sorted horizontal extents when the object
+            has no principal axis.
+        shape_correct: the highest resemblance names the true closest primitive (None if unknown).
+    """
+
+    centre: float
+    depth: float
+    axis_deg: float | None
+    extents: np.ndarray
+    shape_correct: bool | None
+
+    def passes(self, centre_tol=0.01, depth_tol=0.05, axis_tol_deg=10.0, size_tol=0.15) -> bool:
+        """The issue's acceptance thresholds (and the class, when known)."""
+        ok = self.centre <= centre_tol and abs(self.depth) <= depth_tol and np.all(np.abs(self.extents) <= size_tol)
+        ok = ok and (self.axis_deg is None or self.axis_deg <= axis_tol_deg)
+        return bool(ok and self.shape_correct is not False)
+
+
+def compare(estimate: ObjectEstimate, truth: GroundTruth) -> EstimateErrors:
+    """How far `estimate` is from `truth` (the estimate must be found)."""
+    if not estimate.found:
+        raise ValueError("no estimate to compare: the object was not found")
+    true_depth = float(np.linalg.norm(truth.centre - estimate.camera_position))
+    axis_deg = None
+    if truth.principal_axis is not None and estimate.principal_axis is not None:
+        cosine = abs(float(np.dot(truth.principal_axis, estimate.principal_axis)))
+        axis_deg = math.degrees(math.acos(min(cosine, 1.0)))
+    extents = np.array(estimate.extents, float)
+    true_extents = np.array(truth.extents, float)
+    if truth.principal_axis is None or estimate.principal_axis is None:
+        extents[:2] = sorted(extents[:2], reverse=True)
+        true_extents[:2] = sorted(true_extents[:2], reverse=True)
+    shape_correct = None if truth.shape is None else estimate.best_shape == truth.shape
+    return EstimateErrors(
+        centre=float(np.linalg.norm(estimate.centre - truth.centre)),
+        depth=(estimate.depth - true_depth) / true_depth,
+        axis_deg=axis_deg,
+        extents=(extents - true_extents) / true_extents,
+        shape_correct=shape_correct,
+    )
+
+
+def true_pose(scenario: Scenario, spec: ObjectSpec) -> RigidTransform:
+    """The object's resting pose for the scenario's placement (it does not move while looked at)."""
+    return object_rest_pose(spec, scenario.object)
