@@ -5,16 +5,17 @@ eccentricity ≫ 1 → cylinder (rotationally symmetric about its principal axis
 "Constant" only means something for a given motion, so the features are modelled as functions of
 where the camera is on its sphere around the object centre: φa = rotation about the object's axis a
 (the cylinder primitive's arc), φb = rotation about the cross axis b (the sphere primitive's arc),
-both 0 at the reference (first) view. Over the samples of the motion a least-squares fit
+both 0 at the reference (first) view. The arcs are travelled one after the other, so every view lies
+on one of the two arcs (the one whose angle is larger); on each arc a least-squares fit
 
-    y(φa, φb) ≈ β0 + β1 φa + β2 |φa| + β3 φa² + β4 φb + β5 |φb| + β6 φb²,
+    y(φ) ≈ β0 + β1 φ + β2 |φ| + β3 φ²
 
-for y = log(area · (distance / f)²) (the silhouette's area in m² at the object, so that a change of
-distance is not a change of shape) and y = log(eccentricity), separates what each arc does. A box's
-cross-section gives |φ| terms (its area rises on both sides of a face-on view), perspective and
-ellipses give φ², an asymmetric view φ.
+is made for y = log(area · (distance / f)²) (the silhouette's area in m² at the object, so that a
+change of distance is not a change of shape) and y = log(eccentricity). A box's cross-section gives
+|φ| terms (its silhouette grows on both sides of a face-on view), perspective and ellipses φ², an
+asymmetric view φ.
 
-* variation along a, V_a = the largest deviation of the a-terms from the reference view over the
+* variation along a, V_a = the largest deviation of the fitted curve from its value at φ = 0 over the
   explored range of φa, both features combined (root of the sum of squares); V_b alike.
 * invariance I_a = exp(−(V_a / τ_V)²), I_b alike; roundness R = exp(−((e0 − 1) / τ_e)²), e0 = the
   fitted eccentricity of the reference view (face-on, from above).
@@ -28,59 +29,93 @@ ellipses give φ², an asymmetric view φ.
 All three lie in [0, 1]. τ_V and τ_e are choices (diagrams/perception.scenarios.yaml).
 """
 
-
 import dataclasses
 import math
 
 import numpy as np
 
-NUM_BASIS = 7
+NUM_BASIS = 4  # per arc: 1, φ, |φ|, φ²
 NUM_FEATURES = 2  # log area, log eccentricity
 SHAPES = ("sphere", "cylinder", "box")
 
 
-def basis(phi_a: float, phi_b: float) -> np.ndarray:
-    """The regressors [1, φa, |φa|, φa², φb, |φb|, φb²]."""
-    return np.array([1.0, phi_a, abs(phi_a), phi_a * phi_a, phi_b, abs(phi_b), phi_b * phi_b])
+def basis(phi: float) -> np.ndarray:
+    """The regressors [1, φ, |φ|, φ²] of one arc."""
+    return np.array([1.0, phi, abs(phi), phi * phi])
 
 
 @dataclasses.dataclass
-class FeatureStatistics:
-    """Running sums of the regression over the motion (what a resemblance primitive keeps in state).
-
-    Attributes:
-        XtX: Σ x xᵀ (7×7).
-        XtY: Σ x yᵀ (7×2).
-        count: number of samples.
-        phi_range: [min φa, max φa, min φb, max φb] seen (rad).
-    """
+class ArcStatistics:
+    """Running sums of one arc's regression: Σ x xᵀ (4×4), Σ x yᵀ (4×2), count, [min φ, max φ]."""
 
     XtX: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros((NUM_BASIS, NUM_BASIS)))
     XtY: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros((NUM_BASIS, NUM_FEATURES)))
     count: float = 0.0
-    phi_range: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(4))
+    phi_range: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(2))
 
-    SIZE = NUM_BASIS * NUM_BASIS + NUM_BASIS * NUM_FEATURES + 1 + 4
+    SIZE = NUM_BASIS * NUM_BASIS + NUM_BASIS * NUM_FEATURES + 1 + 2
 
-    def add(self, phi_a: float, phi_b: float, metric_area: float, eccentricity: float) -> None:
-        """Adds one view: angles (rad), silhouette area at the object (m²), eccentricity (≥ 1)."""
-        x = basis(phi_a, phi_b)
-        y = np.array([math.log(metric_area), math.log(max(eccentricity, 1.0))])
+    def add(self, phi: float, y: np.ndarray) -> None:
+        x = basis(phi)
         self.XtX += np.outer(x, x)
         self.XtY += np.outer(x, y)
         self.count += 1.0
-        self.phi_range = np.array([min(self.phi_range[0], phi_a), max(self.phi_range[1], phi_a),
-                                   min(self.phi_range[2], phi_b), max(self.phi_range[3], phi_b)])
+        self.phi_range = np.array([min(self.phi_range[0], phi), max(self.phi_range[1], phi)])
+
+    def fit(self, ridge: float) -> np.ndarray:
+        """β (4×2), with a ridge on every term but the constant."""
+        regulariser = ridge * max(self.count, 1.0) * np.diag([0.0, 1.0, 1.0, 1.0])
+        return np.linalg.solve(self.XtX + regulariser + 1e-12 * np.eye(NUM_BASIS), self.XtY)
+
+    def variation(self, ridge: float) -> float:
+        """Largest deviation of the fitted curves from φ = 0 over the explored range, features combined."""
+        if self.count < NUM_BASIS:
+            return 0.0
+        beta = self.fit(ridge)
+        phi = np.linspace(min(self.phi_range[0], 0.0), max(self.phi_range[1], 0.0), 61)
+        terms = np.column_stack([phi, np.abs(phi), phi * phi]) @ beta[1:]  # (61, features)
+        return float(np.sqrt(np.sum(np.max(np.abs(terms), axis=0) ** 2)))
 
     def to_vector(self) -> np.ndarray:
         return np.concatenate([self.XtX.ravel(), self.XtY.ravel(), [self.count], self.phi_range])
 
     @classmethod
-    def from_vector(cls, x: np.ndarray) -> "FeatureStatistics":
+    def from_vector(cls, x: np.ndarray) -> "ArcStatistics":
         x = np.asarray(x, float)
         n1, n2 = NUM_BASIS * NUM_BASIS, NUM_BASIS * NUM_FEATURES
         return cls(x[:n1].reshape(NUM_BASIS, NUM_BASIS).copy(), x[n1:n1 + n2].reshape(NUM_BASIS, NUM_FEATURES).copy(),
-                   float(x[n1 + n2]), x[n1 + n2 + 1:n1 + n2 + 5].copy())
+                   float(x[n1 + n2]), x[n1 + n2 + 1:n1 + n2 + 3].copy())
+
+
+@dataclasses.dataclass
+class FeatureStatistics:
+    """The silhouette statistics of an exploration: one `ArcStatistics` per arc (about a, about b)."""
+
+    arc_a: ArcStatistics = dataclasses.field(default_factory=ArcStatistics)
+    arc_b: ArcStatistics = dataclasses.field(default_factory=ArcStatistics)
+
+    SIZE = 2 * ArcStatistics.SIZE
+
+    @property
+    def count(self) -> float:
+        return self.arc_a.count + self.arc_b.count
+
+    def add(self, phi_a: float, phi_b: float, metric_area: float, eccentricity: float) -> None:
+        """Adds one view: angles (rad), silhouette area at the object (m²), eccentricity (≥ 1). The
+        view belongs to the arc whose angle is the larger."""
+        y = np.array([math.log(metric_area), math.log(max(eccentricity, 1.0))])
+        if abs(phi_a) >= abs(phi_b):
+            self.arc_a.add(phi_a, y)
+        else:
+            self.arc_b.add(phi_b, y)
+
+    def to_vector(self) -> np.ndarray:
+        return np.concatenate([self.arc_a.to_vector(), self.arc_b.to_vector()])
+
+    @classmethod
+    def from_vector(cls, x: np.ndarray) -> "FeatureStatistics":
+        n = ArcStatistics.SIZE
+        return cls(ArcStatistics.from_vector(x[:n]), ArcStatistics.from_vector(x[n:2 * n]))
 
 
 @dataclasses.dataclass
@@ -120,28 +155,17 @@ class ShapeEvidence:
         return np.array([getattr(self, f.name) for f in dataclasses.fields(self)])
 
 
-def fit(stats: FeatureStatistics, ridge: float) -> np.ndarray:
-    """β (7×2) of the regression, with a ridge on every term but the constant."""
-    regulariser = ridge * max(stats.count, 1.0) * np.diag([0.0] + [1.0] * (NUM_BASIS - 1))
-    return np.linalg.solve(stats.XtX + regulariser + 1e-12 * np.eye(NUM_BASIS), stats.XtY)
-
-
-def _variation(beta: np.ndarray, lo: float, hi: float, columns: slice) -> float:
-    """Largest deviation from φ = 0 of the terms in `columns` over φ in [lo, hi], features combined."""
-    phi = np.linspace(min(lo, 0.0), max(hi, 0.0), 61)
-    terms = np.column_stack([phi, np.abs(phi), phi * phi]) @ beta[columns]  # (61, features)
-    return float(np.sqrt(np.sum(np.max(np.abs(terms), axis=0) ** 2)))
-
-
 def evaluate(stats: FeatureStatistics, params: ScoreParams) -> ShapeEvidence:
     """The resemblances (each in [0, 1]) of the silhouette statistics, and the evidence behind them."""
     if stats.count < params.min_samples:
         return ShapeEvidence(0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
-    beta = fit(stats, params.ridge)
-    lo_a, hi_a, lo_b, hi_b = stats.phi_range
-    v_a = _variation(beta, lo_a, hi_a, slice(1, 4))
-    v_b = _variation(beta, lo_b, hi_b, slice(4, 7))
-    e0 = math.exp(max(float(beta[0, 1]), 0.0))
+    v_a = stats.arc_a.variation(params.ridge)
+    v_b = stats.arc_b.variation(params.ridge)
+    # The reference view's eccentricity: the arcs' fits at φ = 0, weighted by their views.
+    intercepts = [(arc.count, arc.fit(params.ridge)[0, 1]) for arc in (stats.arc_a, stats.arc_b)
+                  if arc.count >= NUM_BASIS]
+    log_e0 = sum(n * b for n, b in intercepts) / sum(n for n, _ in intercepts) if intercepts else 0.0
+    e0 = math.exp(max(float(log_e0), 0.0))
     i_a = math.exp(-((v_a / params.variation_scale) ** 2))
     i_b = math.exp(-((v_b / params.variation_scale) ** 2))
     r = math.exp(-(((e0 - 1.0) / params.roundness_scale) ** 2))
