@@ -571,3 +571,62 @@ def compare(estimate: ObjectEstimate, truth: GroundTruth) -> EstimateErrors:
 def true_pose(scenario: Scenario, spec: ObjectSpec) -> RigidTransform:
     """The object's resting pose for the scenario's placement (it does not move while looked at)."""
     return object_rest_pose(spec, scenario.object)
+
+
+# --- Reporting (the `drake-grasp resemble` command) --------------------------------------------------
+
+
+def comparison_record(result: ExplorationResult, spec: ObjectSpec) -> dict:
+    """Plain data: the estimate beside the truth (at the end of the exploration) and the errors."""
+    estimate = result.estimate
+    record = {"object": spec.name, "estimate": estimate.to_dict(), "best_shape": estimate.best_shape}
+    truth = ground_truth(spec, result.X_WO_end)
+    record["truth"] = {
+        "centre": truth.centre.tolist(),
+        "depth": None if estimate.camera_position is None else
+        float(np.linalg.norm(truth.centre - estimate.camera_position)),
+        "principal_axis": None if truth.principal_axis is None else truth.principal_axis.tolist(),
+        "extents": truth.extents.tolist(),
+        "shape": truth.shape,
+        "object_moved": float(np.linalg.norm(result.X_WO_end.translation() - result.X_WO_start.translation())),
+    }
+    if estimate.found:
+        errors = compare(estimate, truth)
+        record["errors"] = {"centre": errors.centre, "depth": errors.depth, "axis_deg": errors.axis_deg,
+                            "extents": errors.extents.tolist(), "shape_correct": errors.shape_correct,
+                            "within_tolerances": errors.passes()}
+    return record
+
+
+def format_comparison(record: dict) -> list[str]:
+    """Human-readable lines of a `comparison_record`: estimate | truth | error, then the resemblances."""
+    estimate, truth = record["estimate"], record["truth"]
+    timings = estimate["timings"]
+    if estimate["status"] != "ok":
+        return [f"{record['object']}: {estimate['status']} (the camera did not see it from the start pose); "
+                f"{timings.get('sim_time', 0.0):.1f} s simulated in {timings.get('wall_time', 0.0):.1f} s"]
+
+    def vector(v, digits=3):
+        return "-" if v is None else "(" + ", ".join(f"{x:.{digits}f}" for x in v) + ")"
+
+    errors = record["errors"]
+    axis_error = "-" if errors["axis_deg"] is None else f"{errors['axis_deg']:.1f} deg"
+    rows = [
+        ("centre (m)", vector(estimate["centre"]), vector(truth["centre"]), f"{errors['centre'] * 1000:.1f} mm"),
+        ("depth (m)", f"{estimate['depth']:.3f}", f"{truth['depth']:.3f}", f"{errors['depth'] * 100:+.1f} %"),
+        ("principal axis", vector(estimate["principal_axis"], 2), vector(truth["principal_axis"], 2), axis_error),
+        ("size (m)", " x ".join(f"{x:.3f}" for x in estimate["extents"]),
+         " x ".join(f"{x:.3f}" for x in truth["extents"]),
+         " ".join(f"{e * 100:+.1f}" for e in errors["extents"]) + " %"),
+    ]
+    lines = [f"{'':16s} {'estimate':26s} {'truth':26s} error"]
+    lines += [f"{name:16s} {a:26s} {b:26s} {c}" for name, a, b, c in rows]
+    res = estimate["resemblances"]
+    verdict = "" if truth["shape"] is None else \
+        f" (truth: {truth['shape']}, {'right' if errors['shape_correct'] else 'WRONG'})"
+    lines.append("resemblance      " + "  ".join(f"{s} {res[s]:.2f}" for s in SHAPES) +
+                 f"  -> {record['best_shape']}{verdict}")
+    lines.append(f"{record['object']}: {record['best_shape']} (resemblance {res[record['best_shape']]:.2f}); "
+                 f"centre {errors['centre'] * 1000:.1f} mm, depth {errors['depth'] * 100:+.1f} %, axis {axis_error}; "
+                 f"{timings['sim_time']:.1f} s simulated, {timings['frames']} frames, {timings['wall_time']:.1f} s wall")
+    return lines
