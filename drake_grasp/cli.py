@@ -65,10 +65,13 @@ def _parser() -> argparse.ArgumentParser:
     )
     trial.add_argument("--object", required=True, metavar="NAME|PATH",
                        help="a catalogue object, a primitive (sphere:0.12, cube:0.08, cylinder:0.1x0.3) or a mesh file")
-    trial.add_argument("--grasp", choices=["spherical", "cylindrical", "box"], required=True,
-                       help="the compliant grasp to execute")
+    trial.add_argument("--method", choices=["compliant", "eigengrasp"], default="compliant",
+                       help="compliant (default): explore with the wrist camera, pick the grasp of the most "
+                       "resembling shape, execute it")
+    trial.add_argument("--grasp", choices=["spherical", "cylindrical", "box"],
+                       help="force this compliant grasp instead of the algorithm's choice")
     trial.add_argument("--oracle", action="store_true",
-                       help="compute the grasp from the object's true pose and size instead of the camera")
+                       help="skip the camera: compute the grasp (--grasp) from the object's true pose and size")
     _common(trial)
     trial.add_argument("--replay", metavar="FILE.html", help="write a Meshcat replay")
     trial.set_defaults(run=_run_trial)
@@ -259,20 +262,27 @@ def _run_fig4(args) -> int:
 def _run_trial(args) -> int:
     from drake_grasp.grasps import oracle_estimate, plan_compliant_grasp
     from drake_grasp.objects import resolve_object
-    from drake_grasp.trial import run_trial
+    from drake_grasp.trial import run_compliant_trial, run_trial
 
     _check_seed(args.seed)
     replay = _writable_file(args.replay, ".html") if args.replay else None
-    if not args.oracle:
-        raise UsageError("camera-driven trials need the visual primitives, which are not built yet: use --oracle")
     scenario = _load_scenario(args)
     spec = resolve_object(args.object)
+    if args.method == "eigengrasp":
+        raise UsageError("planned grasps run through fig7 (or plan-eigengrasp, then the Python API); "
+                         "use --method compliant")
+    if args.oracle:
+        if args.grasp is None:
+            raise UsageError("--oracle needs --grasp (the oracle does not choose)")
 
-    def plan(X_WO, object_spec):
-        return plan_compliant_grasp(args.grasp, oracle_estimate(X_WO, object_spec))
+        def plan(X_WO, object_spec):
+            return plan_compliant_grasp(args.grasp, oracle_estimate(X_WO, object_spec))
 
-    record = run_trial(scenario, spec, plan, seed=args.seed, method="oracle", grasp=args.grasp,
-                       replay_html=str(replay) if replay else None)
+        record = run_trial(scenario, spec, plan, seed=args.seed, method="oracle", grasp=args.grasp,
+                           replay_html=str(replay) if replay else None)
+    else:
+        record = run_compliant_trial(scenario, spec, seed=args.seed, grasp=args.grasp,
+                                     replay_html=str(replay) if replay else None)
     fields = dataclasses.asdict(record)
     if args.out:
         out = pathlib.Path(args.out)

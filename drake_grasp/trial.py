@@ -66,6 +66,11 @@ class TrialRecord:
     sim_time: float = 0.0
     wall_time: float = 0.0
     detail: str = ""
+    # Camera-driven (compliant) trials: what the visual primitives measured and chose.
+    resemblances: dict = dataclasses.field(default_factory=dict)
+    chosen_grasp: str = ""
+    estimate: dict = dataclasses.field(default_factory=dict)
+    estimate_errors: dict = dataclasses.field(default_factory=dict)
 
     def summary(self) -> str:
         verdict = "SUCCESS" if self.success else f"FAILED ({self.failure})"
@@ -220,6 +225,58 @@ def run_trial(scenario: Scenario, spec: ObjectSpec, plan_function: PlanFunction,
         record.failure = SLIPPED_DURING_HOLD
     record.success = record.failure == ""
     record.sim_time = context.get_time()
+    record.wall_time = time.perf_counter() - wall_start
+    return record
+
+
+OBJECT_NOT_FOUND = "object not found"
+GRASP_OF_SHAPE = {"sphere": "spherical", "cylinder": "cylindrical", "box": "box"}
+
+
+def run_compliant_trial(scenario: Scenario, spec: ObjectSpec, *, seed: int, grasp: str | None = None,
+                        replay_html: str | None = None, perception_config=None) -> TrialRecord:
+    """The compliance-centric algorithm, one trial: explore with the wrist camera, decide, grasp.
+
+    The exploration (`drake_grasp.perception`) looks at the object placed with the trial's seeded
+    variation, from a start pose above its *nominal* placement, and estimates its centre, axes, size
+    and the three shape resemblances. The decision is the grasp of the most resembling shape (or
+    `grasp`, forced by the caller, for Fig. 6's all-grasps protocol). The grasp is computed from the
+    estimate only and executed by `run_trial` (same seed, so the same object placement). No ground
+    truth enters the decision or the grasp; the record keeps the estimate's errors for evaluation.
+
+    The exploration and the grasp run as two simulations in sequence (the arm starts the grasp from
+    the protocol's start configuration; the object, which the camera does not touch, is placed again).
+    """
+    from drake_grasp.grasps import plan_compliant_grasp
+    from drake_grasp.perception import compare, explore, ground_truth
+
+    wall_start = time.perf_counter()
+    variation = TrialVariation.draw(seed, scenario.protocol)
+    explored_scenario, explored_spec = apply_variation(scenario, spec, variation)
+    nominal = np.array([scenario.object.x, scenario.object.y, 0.0])
+    exploration = explore(explored_scenario, perception_config, explored_spec, look_at=nominal)
+    estimate = exploration.estimate
+    if not estimate.found:
+        record = TrialRecord(object=spec.name, method="compliant", grasp=grasp or "", seed=seed, success=False,
+                             failure=OBJECT_NOT_FOUND, variation=dataclasses.asdict(variation),
+                             wall_time=time.perf_counter() - wall_start, estimate=estimate.to_dict())
+        return record
+    chosen = GRASP_OF_SHAPE[estimate.best_shape]
+    executed = grasp or chosen
+    grasp_estimate = estimate.as_grasp_estimate()
+
+    def plan(X_WO, object_spec):  # the estimate only: X_WO and the spec are not looked at
+        return plan_compliant_grasp(executed, grasp_estimate)
+
+    record = run_trial(scenario, spec, plan, seed=seed, method="compliant", grasp=executed, replay_html=replay_html)
+    errors = compare(estimate, ground_truth(explored_spec, exploration.X_WO_start))
+    record.resemblances = dict(estimate.resemblances)
+    record.chosen_grasp = chosen
+    record.estimate_source = "camera"
+    record.estimate = {k: v for k, v in estimate.to_dict().items() if k not in ("evidence",)}
+    record.estimate_errors = {"centre": errors.centre, "depth": errors.depth, "axis_deg": errors.axis_deg,
+                              "extents": [float(e) for e in errors.extents], "shape_correct": errors.shape_correct}
+    record.sim_time += float(estimate.timings.get("sim_time", 0.0))
     record.wall_time = time.perf_counter() - wall_start
     return record
 

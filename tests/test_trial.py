@@ -73,6 +73,8 @@ def test_trial_cli_json_and_errors(capsys, tmp_path, monkeypatch):
                      "--json", "--scenario", str(scenario_file)]) == 0
     record = json.loads(capsys.readouterr().out)
     assert record["object"] == "bottle_case" and record["seed"] == 2 and "success" in record
+    assert cli.main(["trial", "--object", "apple", "--oracle"]) == 2
+    assert "--grasp" in capsys.readouterr().err
     assert cli.main(["trial", "--object", "nope", "--grasp", "box", "--oracle"]) == 2
     assert "unknown object" in capsys.readouterr().err
     scenario_file.write_text("default:\n  protocol:\n    slip_distance: .nan\n")

@@ -58,6 +58,12 @@ def run_one(spec: TrialSpec) -> dict:
 
     scenario = load_scenario(spec.scenario_file or DEFAULT_SCENARIO_FILE, spec.scenario_name)
     obj = resolve_object(spec.object)
+    if spec.method == "compliant":
+        from drake_grasp.trial import run_compliant_trial
+
+        record = run_compliant_trial(scenario, obj, seed=spec.seed, grasp=spec.grasp)
+        return _row(spec, record, {"resemblance": record.resemblances, "chosen": record.chosen_grasp,
+                                   "estimate_errors": record.estimate_errors})
     if spec.method == "oracle":
         def plan(X_WO, object_spec):
             return plan_compliant_grasp(spec.grasp, oracle_estimate(X_WO, object_spec))
@@ -78,6 +84,12 @@ def run_one(spec: TrialSpec) -> dict:
     for key in ("finger_angles", "breakaway", "breakaway_angles", "variation"):
         row[key] = json.dumps(_finite(row[key]))
     extra = dict(spec.planned or {})
+    if spec.method == "compliant":
+        from drake_grasp.trial import run_compliant_trial
+
+        record = run_compliant_trial(scenario, obj, seed=spec.seed, grasp=spec.grasp)
+        return _row(spec, record, {"resemblance": record.resemblances, "chosen": record.chosen_grasp,
+                                   "estimate_errors": record.estimate_errors})
     if spec.method == "oracle":
         extra["truth_class"] = obj.closest_primitive
     row["extra"] = json.dumps(extra)
