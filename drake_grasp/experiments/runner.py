@@ -54,19 +54,19 @@ def run_one(spec: TrialSpec) -> dict:
     from drake_grasp.grasps import oracle_estimate, plan_compliant_grasp, planned_grasp
     from drake_grasp.objects import resolve_object
     from drake_grasp.station import DEFAULT_SCENARIO_FILE, load_scenario
-    from drake_grasp.trial import run_trial
+    from drake_grasp.trial import run_compliant_trial, run_trial
 
     scenario = load_scenario(spec.scenario_file or DEFAULT_SCENARIO_FILE, spec.scenario_name)
     obj = resolve_object(spec.object)
     if spec.method == "compliant":
-        from drake_grasp.trial import run_compliant_trial
-
         record = run_compliant_trial(scenario, obj, seed=spec.seed, grasp=spec.grasp)
         return _row(spec, record, {"resemblance": record.resemblances, "chosen": record.chosen_grasp,
                                    "estimate_errors": record.estimate_errors})
     if spec.method == "oracle":
         def plan(X_WO, object_spec):
             return plan_compliant_grasp(spec.grasp, oracle_estimate(X_WO, object_spec))
+
+        extra = {"truth_class": obj.closest_primitive}
     elif spec.method == "eigengrasp":
         import numpy as np
         from pydrake.math import RigidTransform
@@ -76,23 +76,21 @@ def run_one(spec: TrialSpec) -> dict:
 
         def plan(X_WO, object_spec):
             return planned_grasp(X_OH, q, X_WO)
+
+        extra = dict(spec.planned)
     else:
         raise ValueError(f"unknown method '{spec.method}'")
     record = run_trial(scenario, obj, plan, seed=spec.seed, method=spec.method, grasp=spec.grasp)
-    row = dataclasses.asdict(record)
+    return _row(spec, record, extra)
+
+
+def _row(spec: TrialSpec, record, extra: dict) -> dict:
+    """A record as CSV-ready values; lists and dicts as JSON."""
+    row = {k: v for k, v in dataclasses.asdict(record).items() if k in TRIAL_FIELDS}
     row["object"] = spec.object  # the name the sweep asked for (a path stays a path)
     for key in ("finger_angles", "breakaway", "breakaway_angles", "variation"):
         row[key] = json.dumps(_finite(row[key]))
-    extra = dict(spec.planned or {})
-    if spec.method == "compliant":
-        from drake_grasp.trial import run_compliant_trial
-
-        record = run_compliant_trial(scenario, obj, seed=spec.seed, grasp=spec.grasp)
-        return _row(spec, record, {"resemblance": record.resemblances, "chosen": record.chosen_grasp,
-                                   "estimate_errors": record.estimate_errors})
-    if spec.method == "oracle":
-        extra["truth_class"] = obj.closest_primitive
-    row["extra"] = json.dumps(extra)
+    row["extra"] = json.dumps(_finite(extra))
     return row
 
 
