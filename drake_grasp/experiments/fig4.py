@@ -25,6 +25,8 @@ import time
 
 import numpy as np
 
+from drake_grasp.experiments.results import save_figure
+
 FIELDS = [
     "shape", "size", "axis", "error", "epsilon", "volume", "num_contacts", "fingers_touching",
     "palm_touching", "links", "approach_distance", "spread", "proximal_1", "proximal_2", "proximal_3",
@@ -293,10 +295,6 @@ def plot(summaries: dict[str, ShapeSummary], out_dir: pathlib.Path) -> list[path
             bottom.legend(fontsize=7)
     fig.colorbar(image, ax=[axes[0][c] for c in range(len(columns))], label="ε", shrink=0.9)
     fig.suptitle("Fig. 4: quasi-static grasps with breakaway, ε (L1) over object size and hand pose error")
-    paths = [out_dir / "fig4.png", out_dir / "fig4.svg"]
-    for path in paths:
-        tmp = path.with_name(path.stem + ".tmp" + path.suffix)
-        fig.savefig(tmp, dpi=110)
-        tmp.replace(path)
+    paths = save_figure(fig, out_dir, "fig4", dpi=110)
     plt.close(fig)
     return paths

@@ -18,6 +18,8 @@ import pathlib
 
 import numpy as np
 
+from drake_grasp.experiments.results import save_figure
+
 GRASPS = ("spherical", "cylindrical", "box")
 RESEMBLANCE_OF = {"spherical": "sphere", "cylindrical": "cylinder", "box": "box"}
 PAPER_CHOSEN_SUCCESS = (86, 90)  # the paper's Fig. 6: 95.6 % for the grasps the algorithm chose
@@ -148,10 +150,6 @@ def plot(stats: dict[str, dict[str, GraspStats]], out_dir: pathlib.Path) -> list
               loc="lower left", ncol=3)
     ax.set_title("Fig. 6: resemblance of each compliant grasp's shape vs. its success")
     fig.tight_layout()
-    paths = [out_dir / "fig6.png", out_dir / "fig6.svg"]
-    for path in paths:
-        tmp = path.with_name(path.stem + ".tmp" + path.suffix)
-        fig.savefig(tmp, dpi=120)
-        tmp.replace(path)
+    paths = save_figure(fig, out_dir, "fig6", dpi=120)
     plt.close(fig)
     return paths

@@ -20,6 +20,8 @@ import time
 
 import numpy as np
 
+from drake_grasp.experiments.results import save_figure
+
 from drake_grasp.experiments import fig6
 
 OBJECTS = ("sponge", "spectacle_case", "toy_bridge", "soccer_ball", "game_box", "bottle_case")
@@ -217,10 +219,6 @@ def plot(rows: list[Comparison], out_dir: pathlib.Path, energy: str) -> list[pat
     ax.set_title("Fig. 7: compliance-centric grasps vs. the Eigengrasp planner\n(same arm, controller, seeds and success test)",
                  fontsize=9)
     fig.tight_layout()
-    paths = [out_dir / "fig7.png", out_dir / "fig7.svg"]
-    for path in paths:
-        tmp = path.with_name(path.stem + ".tmp" + path.suffix)
-        fig.savefig(tmp, dpi=120)
-        tmp.replace(path)
+    paths = save_figure(fig, out_dir, "fig7", dpi=120)
     plt.close(fig)
     return paths

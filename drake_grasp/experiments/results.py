@@ -91,6 +91,17 @@ class ResultsTable:
             self._rows[self.key(row)] = row
 
 
+def save_figure(fig, out_dir: pathlib.Path, stem: str, dpi: int = 120) -> list[pathlib.Path]:
+    """Writes a matplotlib figure as out_dir/stem.png and .svg, each atomically (no half-written
+    figure if the run is interrupted); returns the two paths."""
+    paths = [out_dir / f"{stem}.png", out_dir / f"{stem}.svg"]
+    for path in paths:
+        tmp = path.with_name(path.stem + ".tmp" + path.suffix)
+        fig.savefig(tmp, dpi=dpi)
+        tmp.replace(path)
+    return paths
+
+
 def _format(value) -> str:
     if isinstance(value, float):
         if math.isnan(value):
