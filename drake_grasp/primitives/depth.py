@@ -16,11 +16,21 @@ Behaviour (DESIGN §1, paper Sec. 4), per command:
 * In every mode but OFF: if the silhouette touches the image border the camera backs off along its
   optical axis (the object may be cut).
 
-Estimates (outputs): the object centre (world, m), the depth (distance from the latest camera
-position to the centre, m), and the silhouette's metric extents (m) along the sides of its
-minimum-area rectangle — measured between the tangent planes through the rectangle's sides,
-through the centre (`estimators.extent_coefficients`), weighted toward views close to the first
-one (from above, face-on: `size_view_spread`).
+Estimates (outputs), two estimators of the same views:
+
+* the rays through the silhouette's centroid (`estimators.add_ray`): the drift correction above.
+  Fast and well conditioned from the first arc on, but the centroid of a perspective silhouette is
+  not the projection of the object's centre (from above one sees a box's top face, whose centre is
+  higher), so it is only used until the views have spread (`fit_min_tilt`), and as a weak prior.
+* the tangent planes (`estimators.tangent_planes`, `estimators.fit_support`): the four sides of the
+  silhouette's bounding rectangle back-project to planes tangent to the object, exact under
+  perspective. A support-function model (a box grown by a disc and a sphere, in the frame of the
+  principal axis — an input from the principal-axis primitive — with "it rests on the table" as one
+  more equation) fitted to all of them gives the object centre, and its extents along the axis,
+  across it and vertically. Older views weigh less (`forget_time`): the estimate follows an object
+  that creeps or rolls on the table.
+
+The depth is the distance from the latest camera position to the estimated centre.
 """
 
 

@@ -1,7 +1,7 @@
 """The estimators of the depth and principal-axis primitives, on plain arrays.
 
-Every estimator is a running sum (a few numbers of discrete state in the LeafSystems), so the
-systems stay small and each update costs microseconds:
+The ray and plane estimators are running sums (a few numbers of discrete state in the LeafSystems);
+the tangent planes are kept and refitted (a small bounded least-squares problem) at each update:
 
 * **centre and depth** (`add_ray`, `solve_point`): every image contributes the ray from the camera
   centre through the silhouette's centroid. While the camera circles a point that is not the object's
@@ -18,10 +18,11 @@ systems stay small and each update costs microseconds:
   and that image line (its interpretation plane). Planes seen from views spread *around* the axis
   (the principal-axis primitive's arc) meet only along the axis direction: it is the eigenvector of
   Σ n nᵀ with the smallest eigenvalue. An arc about the true axis leaves the image axis invariant.
-* **size** (`extent_coefficients`): each side of the silhouette's bounding rectangle back-projects to
-  a plane tangent to the object; the distance between the two parallel tangent planes, measured
-  through the centre, is the object's extent across them. It is linear in the centre c, so the sums
-  Σ w g and Σ w h of extent = g·c + h are kept and evaluated at the final centre.
+* **centre and size from tangent planes** (`tangent_planes`, `fit_support`): each side of the
+  silhouette's bounding rectangle back-projects to a plane through the camera centre tangent to the
+  object: a sample h(ν) = ν·p_camera of the object's support function. A support-function model (a
+  box grown by a disc and a sphere, exact for boxes, cylinders and spheres) fitted to many of them
+  gives the centre and the extents without the perspective bias of the centroid.
 """
 
 
@@ -104,20 +105,6 @@ def image_line_plane_W(intrinsics: CameraIntrinsics, R_WC: np.ndarray, point_uv,
     e = np.array([-math.sin(angle), math.cos(angle)])
     s = float(e @ np.asarray(point_uv, float))
     return np.asarray(R_WC) @ intrinsics.line_plane_normal(e, s)
-
-
-def extent_coefficients(intrinsics: CameraIntrinsics, R_WC: np.ndarray, p_WC: np.ndarray, e: np.ndarray,
-                        s_min: float, s_max: float) -> tuple[np.ndarray, float]:
-    """(g, h) such that the object's extent between the tangent planes of the image lines
-    e·(u, v) = s_min and e·(u, v) = s_max is g·c + h for an object centre c (world).
-
-    The plane of s_min has the object on its positive side, that of s_max on its negative side, so
-    the distances from c are n_min·(c − p) and −n_max·(c − p).
-    """
-    n_min = intrinsics.line_plane_normal(e, s_min)
-    n_max = intrinsics.line_plane_normal(e, s_max)
-    g = np.asarray(R_WC) @ (n_min - n_max)
-    return g, float(-g @ np.asarray(p_WC))
 
 
 def view_angles(p_WC: np.ndarray, centre_W: np.ndarray, a_W: np.ndarray, b_W: np.ndarray) -> tuple[float, float]:

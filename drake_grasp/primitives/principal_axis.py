@@ -4,7 +4,9 @@ Behaviour (DESIGN §1, paper Sec. 4), per command:
 
 * TRACK (and APPROACH): a servo rolls the camera about its optical axis so that the blob's principal
   axis (second-order central moments) lies along the image's u axis (the long border). It acts only
-  on elongated blobs (eccentricity ≥ `servo_min_eccentricity`); a round blob has no axis to align.
+  on an elongated object (see `elongated` below) seen as an elongated blob (eccentricity ≥
+  `servo_min_eccentricity`): a round blob has no axis to align, and a cube seen at a tilt looks
+  elongated along the tilt, which is not an axis of the object.
 * EXPLORE: TRACK, plus an arc about the camera's x axis through the estimated object centre (an
   input: the depth primitive's estimate). After the servo has aligned the blob, the camera's x axis
   is the image of the object's axis, so the arc runs *around* the axis: if that is the object's axis
@@ -14,10 +16,11 @@ Behaviour (DESIGN §1, paper Sec. 4), per command:
 
 Estimate: every image line along the blob's axis (through its centroid) back-projects to a plane
 that contains the object's axis in space; the axis is the direction common to all these planes
-(`estimators.axis_from_planes`). For round blobs the line used is the side of the minimum-area
-rectangle nearest to u (a cube's edge, an arbitrary direction for a disc), so that the estimate is
-always a direction (then sought across the first view direction); `elongated` says whether it is a
-principal axis: the mean eccentricity over the views reaches `elongated_eccentricity`.
+(`estimators.axis_from_planes`). `elongated` says whether the object has a principal axis: the mean
+eccentricity over the views reaches `elongated_eccentricity`. For an object that has none, the
+"axis" output is the direction of a side of the silhouette's minimum-area rectangle (the side nearest
+u; a cube's edge, an arbitrary direction for a sphere), from the planes of those sides and sought
+across the first view direction, so that the resemblance primitives always get a frame.
 """
 
 
@@ -71,8 +74,8 @@ class PrincipalAxisPrimitive(VisualPrimitive):
             eigenvalue of Σ n nᵀ per view: near 0 while all views saw the axis from one side)].
     """
 
-    _M, _COUNT, _LOG_ECC, _VIEW0 = slice(0, 9), 9, 10, slice(11, 14)
-    _INTERNAL_SIZE = 14
+    _M_AXIS, _M_SIDE, _COUNT, _LOG_ECC, _VIEW0 = slice(0, 9), slice(9, 18), 18, 19, slice(20, 23)
+    _INTERNAL_SIZE = 23
 
     def __init__(self, intrinsics: CameraIntrinsics, period: float, params: PrincipalAxisParams | None = None):
         super().__init__(period)
@@ -86,41 +89,43 @@ class PrincipalAxisPrimitive(VisualPrimitive):
         self.DeclareStateOutputPort("axis_info", self._info)
         self.DeclareCameraRateUpdate()
 
-    def line_angle(self, eccentricity: float, axis_angle: float, rectangle_angle: float) -> float:
-        """The image direction taken as the blob's axis: the moments' axis if elongated enough, else
-        the rectangle side nearest u; in (−π/2, π/2] (rad)."""
-        if eccentricity >= self.params.servo_min_eccentricity:
-            return wrap_angle(axis_angle, math.pi)
-        return wrap_angle(rectangle_angle, math.pi / 2.0)
-
     def DoUpdate(self, context: Context, discrete_state, sample: CameraSample, new_sample: bool,
                  command: PrimitiveCommand, explore_time: float | None) -> np.ndarray:
         p = self.params
         s = sample.silhouette
+        internal = context.get_discrete_state(self._internal).get_value().copy()
+        elongated = context.get_discrete_state(self._info).get_value()[0] > 0.5
         if new_sample and sample.usable:
-            internal = context.get_discrete_state(self._internal).get_value().copy()
-            angle = self.line_angle(s.eccentricity, s.axis_angle, s.rectangle.angle)
-            n_W = estimators.image_line_plane_W(self.intrinsics, sample.R_WC, s.centroid, angle)
-            M = internal[self._M].reshape(3, 3).copy()
-            estimators.add_plane(M, n_W)
-            internal[self._M] = M.ravel()
             if internal[self._COUNT] == 0:
                 internal[self._VIEW0] = sample.R_WC[:, 2]
+            # The blob's axis (moments) where it has one; the rectangle side nearest u always.
+            M_axis = internal[self._M_AXIS].reshape(3, 3).copy()
+            M_side = internal[self._M_SIDE].reshape(3, 3).copy()
+            if s.eccentricity >= p.servo_min_eccentricity:
+                estimators.add_plane(M_axis, estimators.image_line_plane_W(
+                    self.intrinsics, sample.R_WC, s.centroid, wrap_angle(s.axis_angle, math.pi)))
+            estimators.add_plane(M_side, estimators.image_line_plane_W(
+                self.intrinsics, sample.R_WC, s.centroid, wrap_angle(s.rectangle.angle, math.pi / 2.0)))
+            internal[self._M_AXIS] = M_axis.ravel()
+            internal[self._M_SIDE] = M_side.ravel()
             internal[self._COUNT] += 1
             internal[self._LOG_ECC] += math.log(s.eccentricity)
             count = internal[self._COUNT]
             mean_ecc = math.exp(internal[self._LOG_ECC] / count)
-            elongated = float(mean_ecc >= p.elongated_eccentricity)
-            # A round object's "axis" (a silhouette side) is taken across the first view: its lines'
-            # planes, all seen from about there, would otherwise share the view direction itself.
-            axis, eigenvalues = estimators.axis_from_planes(M, None if elongated else internal[self._VIEW0])
+            elongated = mean_ecc >= p.elongated_eccentricity and np.trace(M_axis) > 0
+            if elongated:
+                axis, eigenvalues = estimators.axis_from_planes(M_axis)
+            else:
+                # A round object's "axis" is a silhouette side, sought across the first view: its lines'
+                # planes, all seen from about there, would otherwise share the view direction itself.
+                axis, eigenvalues = estimators.axis_from_planes(M_side, internal[self._VIEW0])
             SetDiscreteGroup(discrete_state, self._internal, internal)
             SetDiscreteGroup(discrete_state, self._axis, axis)
-            SetDiscreteGroup(discrete_state, self._info, [elongated, mean_ecc, eigenvalues[1] / count])
+            SetDiscreteGroup(discrete_state, self._info, [float(elongated), mean_ecc, eigenvalues[1] / count])
         if s is None:
             return np.zeros(6)
         twist = np.zeros(6)
-        if s.eccentricity >= p.servo_min_eccentricity:
+        if s.eccentricity >= p.servo_min_eccentricity and elongated:
             # A line at angle θ in the image turns by −ψ when the camera rolls by ψ about +z.
             twist[2] = p.roll_gain * wrap_angle(s.axis_angle, math.pi)
         # The arc: about the camera's x axis (at the arc's start: the blob's axis), around the centre.

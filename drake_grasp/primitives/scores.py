@@ -127,7 +127,7 @@ class ScoreParams:
         min_samples: fewer samples give no resemblance (all 0).
     """
 
-    variation_scale: float = 0.05
+    variation_scale: float = 0.04
     roundness_scale: float = 0.15
     ridge: float = 1e-3
     min_samples: int = 10
