@@ -181,7 +181,6 @@ def _silhouette_rectangle(points_W, R_WC, p_WC):
 def test_tangent_planes_are_tangent_to_a_box():
     half = np.array([0.08, 0.05, 0.03])
     centre = np.array([0.55, 0.0, 0.03])
-    corners = np.array([centre + half * np.array(s) for s in np.ndindex(2, 2, 2)]) * 1.0
     corners = np.array([centre + half * (2 * np.array(s) - 1) for s in np.ndindex(2, 2, 2)])
     h = _box_support(half, centre)
     for R_WC, p_WC in _views(centre, 0.4, 5):

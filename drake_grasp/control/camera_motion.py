@@ -43,7 +43,7 @@ class CameraMotionParams:
         max_linear_speed: limit on the camera's linear speed, m/s.
     """
 
-    time_step: float = 0.01
+    time_step: float = 0.02
     joint_velocity_limit: float = 1.5
     joint_acceleration_limit: float = 15.0
     joint_centering_gain: float = 1.0

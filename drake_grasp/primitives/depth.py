@@ -76,7 +76,7 @@ class DepthParams:
 
     centring_gain: float = 3.0
     arc_amplitude: float = 0.35
-    arc_period: float = 2.5
+    arc_period: float = 2.0
     arc_sweeps: int = 1
     arc_start: float = 0.0
     arc_gain: float = 2.0

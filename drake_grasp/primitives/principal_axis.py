@@ -55,9 +55,9 @@ class PrincipalAxisParams:
     servo_min_eccentricity: float = 1.15
     elongated_eccentricity: float = 1.2
     arc_amplitude: float = 0.35
-    arc_period: float = 2.5
+    arc_period: float = 2.0
     arc_sweeps: int = 1
-    arc_start: float = 2.5
+    arc_start: float = 2.0
     arc_gain: float = 2.0
 
 

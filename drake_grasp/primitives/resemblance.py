@@ -61,8 +61,8 @@ class ResemblanceParams:
 
 
 DEFAULT_ARCS = {
-    "cylinder": ResemblanceParams(arc_about="axis", arc_amplitude=0.7, arc_start=0.0, arc_period=4.5),
-    "sphere": ResemblanceParams(arc_about="cross", arc_amplitude=0.5, arc_start=4.5, arc_period=3.5),
+    "cylinder": ResemblanceParams(arc_about="axis", arc_amplitude=0.7, arc_start=0.0, arc_period=4.0),
+    "sphere": ResemblanceParams(arc_about="cross", arc_amplitude=0.5, arc_start=4.0, arc_period=3.0),
     "box": ResemblanceParams(arc_about="none"),
 }
 

@@ -52,8 +52,8 @@ class SequencerParams:
     """Phase durations, s (diagrams/perception.scenarios.yaml)."""
 
     approach_time: float = 1.5
-    depth_axis_time: float = 5.0
-    resemblance_time: float = 8.0
+    depth_axis_time: float = 4.0
+    resemblance_time: float = 7.0
 
     def validate(self) -> None:
         for name in ("approach_time", "depth_axis_time", "resemblance_time"):
