@@ -3,20 +3,20 @@
 The paper's perception (Sec. 4) as one Drake Diagram around the station:
 
     station.camera.label_image ─┐
-    station.camera.X_WC ────────┴─> SilhouetteCamera (fixed rate) ──camera_sample──┐
-        ┌───────────────────────────────────────────────────────────────────────────┘
-        ├─> DepthPrimitive ──centre──┬─> PrincipalAxisPrimitive ──axis──┐
-        │                            └────────────────────────────────┬─┴─> Sphere/Cylinder/Box
-        │                                                             │     ResemblancePrimitive
-        └─> ExplorationSequencer ──commands──> (every primitive)      │
+    station.camera.X_WC ────────┴─> SilhouetteCamera (fixed rate) ──camera_sample──> every primitive,
+                                                                                     the sequencer
+    DepthPrimitive ──centre──> PrincipalAxisPrimitive, Sphere/Cylinder/Box ResemblancePrimitive
+    PrincipalAxisPrimitive ──axis──> DepthPrimitive (its size model's frame), the resemblance primitives
+    ExplorationSequencer ──depth/axis/resemblance_command──> the primitives
     every primitive ──V_C_desired──> Adder ──> CameraTwistController ──> station.wam.desired_state
 
 `AddVisualPrimitives` adds the camera, the five primitives, the twist sum and the camera motion
 controller to a builder that holds a station (a grasp supervisor can reuse it and drive the
 primitives' `command` ports itself); `AddExplorationSequencer` adds the phase machine that drives them
-here. `run_exploration` builds it all for one scenario, starts the camera above the table looking
-down at a point, simulates the exploration, and returns an `ObjectEstimate`. `ground_truth` and
-`compare` measure it against the object's true pose and geometry.
+here. `explore` builds it all for one scenario, starts the camera above the table looking down at a
+point, simulates the exploration, and returns an `ExplorationResult`: the `ObjectEstimate`, and the
+object's true poses for evaluation (`run_exploration` returns the estimate only). `ground_truth` and
+`compare` measure an estimate against the object's true pose and geometry.
 
 Choices (rates, gains, arcs, phase durations, score tolerances) live in
 diagrams/perception.scenarios.yaml (`PerceptionConfig`).
@@ -266,7 +266,7 @@ class ObjectEstimate:
             planes; height = twice the centre's height above the table (it rests on the table).
         resemblances: {"sphere", "cylinder", "box"} → resemblance in [0, 1].
         evidence: what the resemblances rest on (variations, invariances, roundness; see scores).
-        elongation: the mean eccentricity of the silhouette over the depth/axis phase.
+        elongation: the mean eccentricity of the silhouette over the exploration.
         timings: build, simulated and wall-clock times, frames rendered, phase start times.
     """
 
