@@ -48,7 +48,7 @@ class Fig7Config:
     trials: int = 10
     seed: int = 0
     steps: int = 70_000
-    energy: str = "contact"
+    energy: str = "contact-quality"
     compliant_method: str = "compliant"
 
     @property
