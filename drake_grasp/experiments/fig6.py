@@ -128,7 +128,7 @@ def plot(stats: dict[str, dict[str, GraspStats]], out_dir: pathlib.Path) -> list
     import matplotlib.pyplot as plt
 
     colours = {"spherical": "tab:red", "cylindrical": "tab:blue", "box": "tab:green"}
-    fig, ax = plt.subplots(figsize=(1.2 * len(stats) + 2.5, 4.2))
+    fig, ax = plt.subplots(figsize=(1.3 * len(stats) + 3.5, 4.2))
     for x, (o, per_grasp) in enumerate(stats.items()):
         choice = chosen_grasp(per_grasp)
         for k, (g, s) in enumerate(per_grasp.items()):
@@ -146,8 +146,8 @@ def plot(stats: dict[str, dict[str, GraspStats]], out_dir: pathlib.Path) -> list
     ax.set_ylim(-0.05, 1.1)
     ax.set_ylabel("shape resemblance")
     ax.grid(alpha=0.3, axis="y")
-    ax.legend(title="grasp (circle area = success rate; ring = chosen)", fontsize=7, title_fontsize=7,
-              loc="lower left", ncol=3)
+    ax.legend(title="grasp\n(circle area = success rate,\nring = the algorithm's choice)", fontsize=7,
+              title_fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), markerscale=0.35, frameon=False)
     ax.set_title("Fig. 6: resemblance of each compliant grasp's shape vs. its success")
     fig.tight_layout()
     paths = save_figure(fig, out_dir, "fig6", dpi=120)

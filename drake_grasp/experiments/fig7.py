@@ -201,7 +201,7 @@ def plot(rows: list[Comparison], out_dir: pathlib.Path, energy: str) -> list[pat
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    fig, ax = plt.subplots(figsize=(max(6.0, 1.5 * len(rows) + 2), 4))
+    fig, ax = plt.subplots(figsize=(max(7.5, 1.5 * len(rows) + 4), 4))
     x = np.arange(len(rows))
     width = 0.26
     series = [("compliance-centric", [c.compliant for c in rows], "tab:orange"),
@@ -214,7 +214,7 @@ def plot(rows: list[Comparison], out_dir: pathlib.Path, energy: str) -> list[pat
     ax.set_xticklabels([c.object.replace("_", "\n") for c in rows], fontsize=8)
     ax.set_ylim(0, 105)
     ax.set_ylabel("success (%)")
-    ax.legend(fontsize=7, loc="upper right")
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), frameon=False)
     ax.grid(alpha=0.3, axis="y")
     ax.set_title("Fig. 7: compliance-centric grasps vs. the Eigengrasp planner\n(same arm, controller, seeds and success test)",
                  fontsize=9)
