@@ -36,3 +36,23 @@ def test_choice_is_the_highest_mean_resemblance_and_summary_counts_its_successes
 def test_config_rejects_no_trials():
     with pytest.raises(ValueError, match="--trials"):
         fig6.Fig6Config(objects=("apple",), trials=0)
+
+
+def test_a_small_real_sweep_runs_resumes_and_plots(tmp_path):
+    # Real trials (oracle estimates, 0.5 s hold, to stay short), through the same pool and table.
+    import io
+
+    from drake_grasp.experiments.runner import run_trials
+
+    scenario = tmp_path / "short.yaml"
+    scenario.write_text("default:\n  protocol:\n    execution:\n      hold_time: 0.5\n")
+    config = fig6.Fig6Config(objects=("sponge",), trials=1, seed=5, method="oracle")
+    specs = fig6.trial_specs(config, str(scenario))
+    table = run_trials(specs, tmp_path / "fig6.csv", workers=1, progress=io.StringIO())
+    assert len(table) == 3
+    progress = io.StringIO()
+    again = run_trials(specs, tmp_path / "fig6.csv", workers=1, progress=progress)
+    assert "resuming, 3/3" in progress.getvalue() and len(again) == 3
+    stats = fig6.grasp_stats(again.rows(), config.objects)
+    assert fig6.chosen_grasp(stats["sponge"]) == "box"  # the oracle's choice: the sponge's true class
+    assert all(p.exists() for p in fig6.plot(stats, tmp_path))

@@ -146,8 +146,11 @@ def plot(stats: dict[str, dict[str, GraspStats]], out_dir: pathlib.Path) -> list
     ax.set_ylim(-0.05, 1.1)
     ax.set_ylabel("shape resemblance")
     ax.grid(alpha=0.3, axis="y")
-    ax.legend(title="grasp\n(circle area = success rate,\nring = the algorithm's choice)", fontsize=7,
-              title_fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), markerscale=0.35, frameon=False)
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(title="grasp\n(circle area = success rate,\nring = the algorithm's choice)", fontsize=7,
+                  title_fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), markerscale=0.35, frameon=False)
+    else:  # oracle trials measure no resemblance
+        ax.text(0.5, 0.5, "no resemblances measured (oracle trials)", transform=ax.transAxes, ha="center")
     ax.set_title("Fig. 6: resemblance of each compliant grasp's shape vs. its success")
     fig.tight_layout()
     paths = save_figure(fig, out_dir, "fig6", dpi=120)
