@@ -29,7 +29,6 @@ import pathlib
 import time
 
 import numpy as np
-from pydrake.common.yaml import yaml_load_typed
 from pydrake.geometry import Meshcat, MeshcatVisualizer, MeshcatVisualizerParams, Role
 from pydrake.math import RigidTransform, RotationMatrix
 from pydrake.systems.analysis import Simulator
@@ -49,6 +48,7 @@ from drake_grasp.primitives.resemblance import DEFAULT_ARCS, ResemblanceParams, 
 from drake_grasp.primitives.scores import SHAPES, ScoreParams
 from drake_grasp.primitives.sequencer import ExplorationSequencer, Phase, SequencerParams, phase_value
 from drake_grasp.station import MakeStation, Scenario, Station, object_rest_pose
+from drake_grasp.yaml_config import load_named
 
 DEFAULT_CONFIG_FILE = DIAGRAMS_DIR / "perception.scenarios.yaml"
 
@@ -95,16 +95,7 @@ def load_perception_config(filename: str | pathlib.Path = DEFAULT_CONFIG_FILE,
     Raises:
         ValueError: (one line) if the file cannot be read or does not match the schema.
     """
-    filename = pathlib.Path(filename)
-    try:
-        text = filename.read_text()
-    except OSError as e:
-        raise ValueError(f"{filename}: cannot read perception config ({e.strerror})") from None
-    try:
-        config = yaml_load_typed(schema=PerceptionConfig, data=text, child_name=name, defaults=PerceptionConfig())
-    except Exception as e:  # yaml_load_typed raises with multi-line messages
-        first_line = str(e).strip().splitlines()[0] if str(e).strip() else type(e).__name__
-        raise ValueError(f"{filename}: perception config '{name}' is malformed: {first_line}") from None
+    config = load_named(PerceptionConfig, filename, name, PerceptionConfig(), "perception config")
     config.validate()
     return config
 

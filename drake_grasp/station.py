@@ -29,7 +29,6 @@ import math
 import pathlib
 
 import numpy as np
-from pydrake.common.yaml import yaml_load_typed
 from pydrake.geometry import (
     MakeRenderEngineVtk,
     RenderEngineVtkParams,
@@ -49,6 +48,7 @@ from drake_grasp.control.hand_controller import HandController, HandControllerPa
 from drake_grasp.objects import AddObject, ObjectSpec, resolve_object
 from drake_grasp.paths import DIAGRAMS_DIR, RegisterPackage
 from drake_grasp.protocol import TrialProtocol
+from drake_grasp.yaml_config import load_named
 
 RENDERER_NAME = "vtk"
 
@@ -106,18 +106,10 @@ def load_scenario(filename: str | pathlib.Path = DEFAULT_SCENARIO_FILE, scenario
         ValueError: (one line) if the file cannot be read or does not match the Scenario schema.
     """
     filename = pathlib.Path(filename)
-    try:
-        text = filename.read_text()
-    except OSError as e:
-        raise ValueError(f"{filename}: cannot read scenario file ({e.strerror})") from None
-    try:
-        defaults = Scenario()
-        if filename.resolve() != DEFAULT_SCENARIO_FILE.resolve():
-            defaults = load_scenario(DEFAULT_SCENARIO_FILE, "default")
-        scenario = yaml_load_typed(schema=Scenario, data=text, child_name=scenario_name, defaults=defaults)
-    except Exception as e:  # yaml_load_typed raises RuntimeError / yaml errors with multi-line text
-        first_line = str(e).strip().splitlines()[0] if str(e).strip() else type(e).__name__
-        raise ValueError(f"{filename}: scenario '{scenario_name}' is malformed: {first_line}") from None
+    defaults = Scenario()
+    if filename.resolve() != DEFAULT_SCENARIO_FILE.resolve():
+        defaults = load_scenario(DEFAULT_SCENARIO_FILE, "default")
+    scenario = load_named(Scenario, filename, scenario_name, defaults, "scenario")
     validate_scenario(scenario)
     return scenario
 
