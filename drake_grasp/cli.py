@@ -349,7 +349,6 @@ def _scenario_args(args) -> tuple[str, str]:
 
 def _run_fig6(args) -> int:
     from drake_grasp.experiments import fig6
-    from drake_grasp.experiments.runner import run_trials
     from drake_grasp.objects import PAPER_OBJECTS
 
     _check_sweep_args(args)
@@ -358,29 +357,20 @@ def _run_fig6(args) -> int:
     trials = args.trials or (2 if args.quick else 10)
     config = fig6.Fig6Config(objects=tuple(objects), trials=trials, seed=args.seed, method=args.method)
     out = pathlib.Path(args.out or args.out_default)
-    out.mkdir(parents=True, exist_ok=True)
     start = time.perf_counter()
-    table = run_trials(fig6.trial_specs(config, scenario_file, scenario_name), out / "fig6.csv",
-                       workers=args.workers, label="fig6")
-    wanted = {(s.object, s.method, s.grasp, str(s.seed)) for s in fig6.trial_specs(config)}
-    rows = [r for r in table.rows() if (r["object"], r["method"], r["grasp"], r["seed"]) in wanted]
-    stats = fig6.grasp_stats(rows, objects)
-    figures = fig6.plot(stats, out)
-    lines = fig6.summary_lines(stats)
+    _, figures, lines, count = fig6.run_sweep(config, out, args.workers, scenario_file, scenario_name)
     wall = time.perf_counter() - start
     if args.json:
-        print(json.dumps({"csv": str(out / "fig6.csv"), "figures": [str(p) for p in figures], "trials": len(rows),
+        print(json.dumps({"csv": str(out / "fig6.csv"), "figures": [str(p) for p in figures], "trials": count,
                           "wall_time": wall, "summary": lines}))
     else:
         print("\n".join(lines))
-        print(f"fig6: {len(rows)} trials, {wall:.0f} s; {out / 'fig6.csv'}, {figures[0]}, {figures[1]}")
+        print(f"fig6: {count} trials, {wall:.0f} s; {out / 'fig6.csv'}, {figures[0]}, {figures[1]}")
     return 0
 
 
 def _run_fig7(args) -> int:
-    from drake_grasp.experiments import fig6, fig7
-    from drake_grasp.experiments.results import ResultsTable
-    from drake_grasp.experiments.runner import TRIAL_FIELDS, TRIAL_KEY, run_trials
+    from drake_grasp.experiments import fig7
 
     _check_sweep_args(args)
     if args.steps is None or args.steps <= 30_000:
@@ -391,30 +381,9 @@ def _run_fig7(args) -> int:
                              seed=args.seed, steps=args.steps, energy=args.energy,
                              compliant_method=args.compliant_method)
     out = pathlib.Path(args.out or args.out_default)
-    out.mkdir(parents=True, exist_ok=True)
     start = time.perf_counter()
-    plans = {obj: fig7.ensure_plan(out, obj, config, scenario_file=scenario_file, scenario_name=scenario_name)
-             for obj in config.objects}
-    table = run_trials(fig7.eigengrasp_specs(plans, config, scenario_file, scenario_name), out / "fig7.csv",
-                       workers=args.workers, label="fig7")
-    # The compliance-centric side: Fig. 6's trials when they cover these objects, else run here.
-    f6_config = fig6.Fig6Config(objects=config.objects, trials=trials, seed=args.seed, method=config.compliant_method)
-    f6_specs = fig6.trial_specs(f6_config, scenario_file, scenario_name)
-    fig6_csv = pathlib.Path(args.fig6) / "fig6.csv"
-    reused = []
-    if fig6_csv.exists():
-        reused = ResultsTable(fig6_csv, TRIAL_FIELDS, TRIAL_KEY).rows()
-    have = {(r["object"], r["method"], r["grasp"], r["seed"]) for r in reused}
-    missing = [s for s in f6_specs if (s.object, s.method, s.grasp, str(s.seed)) not in have]
-    own = run_trials(missing, out / "fig7_compliant.csv", workers=args.workers, label="fig7 compliant").rows()
-    wanted = {(s.object, s.method, s.grasp, str(s.seed)) for s in f6_specs}
-    compliant_rows = [r for r in reused + own if (r["object"], r["method"], r["grasp"], r["seed"]) in wanted]
-    source = (f"{len(compliant_rows) - len(missing)} trials reused from {fig6_csv}, {len(missing)} run here"
-              f" (method {config.compliant_method})")
-    comparison = fig7.compare(config.objects, table.rows(), fig6.grasp_stats(compliant_rows, config.objects),
-                              config.plan_tag)
-    figures = fig7.plot(comparison, out, config.energy)
-    lines = fig7.summary_lines(comparison, config.energy, source)
+    comparison, figures, lines = fig7.run_comparison(config, out, pathlib.Path(args.fig6), args.workers,
+                                                     scenario_file, scenario_name)
     wall = time.perf_counter() - start
     if args.json:
         print(json.dumps(_jsonable({"csv": str(out / "fig7.csv"), "figures": [str(p) for p in figures],

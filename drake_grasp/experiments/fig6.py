@@ -156,3 +156,20 @@ def plot(stats: dict[str, dict[str, GraspStats]], out_dir: pathlib.Path) -> list
     paths = save_figure(fig, out_dir, "fig6", dpi=120)
     plt.close(fig)
     return paths
+
+
+def run_sweep(config: Fig6Config, out_dir: pathlib.Path, workers: int | None = None, scenario_file: str = "",
+              scenario_name: str = "default") -> tuple[dict, list[pathlib.Path], list[str], int]:
+    """Runs (or resumes) the sweep into out_dir/fig6.csv, plots it and summarises it.
+
+    Returns (per-object per-grasp stats, figure paths, summary lines, number of trials).
+    """
+    from drake_grasp.experiments.runner import run_trials
+
+    out_dir.mkdir(parents=True, exist_ok=True)
+    specs = trial_specs(config, scenario_file, scenario_name)
+    table = run_trials(specs, out_dir / "fig6.csv", workers=workers, label="fig6")
+    wanted = {(s.object, s.method, s.grasp, str(s.seed)) for s in specs}
+    rows = [r for r in table.rows() if (r["object"], r["method"], r["grasp"], r["seed"]) in wanted]
+    stats = grasp_stats(rows, config.objects)
+    return stats, plot(stats, out_dir), summary_lines(stats), len(rows)

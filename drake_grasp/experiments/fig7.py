@@ -222,3 +222,35 @@ def plot(rows: list[Comparison], out_dir: pathlib.Path, energy: str) -> list[pat
     paths = save_figure(fig, out_dir, "fig7", dpi=120)
     plt.close(fig)
     return paths
+
+
+def run_comparison(config: Fig7Config, out_dir: pathlib.Path, fig6_dir: pathlib.Path, workers: int | None = None,
+                   scenario_file: str = "", scenario_name: str = "default"):
+    """Plans, executes (or resumes) the planned grasps, gathers the compliance-centric trials (Fig. 6's
+    where they exist, else run here), plots and summarises.
+
+    Returns (list of Comparison, figure paths, summary lines).
+    """
+    from drake_grasp.experiments.results import ResultsTable
+    from drake_grasp.experiments.runner import TRIAL_FIELDS, TRIAL_KEY, run_trials
+
+    out_dir.mkdir(parents=True, exist_ok=True)
+    plans = {obj: ensure_plan(out_dir, obj, config, scenario_file=scenario_file, scenario_name=scenario_name)
+             for obj in config.objects}
+    table = run_trials(eigengrasp_specs(plans, config, scenario_file, scenario_name), out_dir / "fig7.csv",
+                       workers=workers, label="fig7")
+    f6_config = fig6.Fig6Config(objects=config.objects, trials=config.trials, seed=config.seed,
+                                method=config.compliant_method)
+    f6_specs = fig6.trial_specs(f6_config, scenario_file, scenario_name)
+    fig6_csv = pathlib.Path(fig6_dir) / "fig6.csv"
+    reused = ResultsTable(fig6_csv, TRIAL_FIELDS, TRIAL_KEY).rows() if fig6_csv.exists() else []
+    have = {(r["object"], r["method"], r["grasp"], r["seed"]) for r in reused}
+    missing = [s for s in f6_specs if (s.object, s.method, s.grasp, str(s.seed)) not in have]
+    own = run_trials(missing, out_dir / "fig7_compliant.csv", workers=workers, label="fig7 compliant").rows()
+    wanted = {(s.object, s.method, s.grasp, str(s.seed)) for s in f6_specs}
+    compliant_rows = [r for r in reused + own if (r["object"], r["method"], r["grasp"], r["seed"]) in wanted]
+    source = (f"{len(compliant_rows) - len(missing)} trials reused from {fig6_csv}, {len(missing)} run here"
+              f" (method {config.compliant_method})")
+    comparison = compare(config.objects, table.rows(), fig6.grasp_stats(compliant_rows, config.objects),
+                         config.plan_tag)
+    return comparison, plot(comparison, out_dir, config.energy), summary_lines(comparison, config.energy, source)
