@@ -113,6 +113,21 @@ def _parser() -> argparse.ArgumentParser:
                       help="estimates for compliance-centric trials run here (default: the camera)")
     _common(fig7)
     fig7.set_defaults(run=_run_fig7, out_default="out/fig7")
+
+    reproduce = sub.add_parser(
+        "reproduce",
+        help="Fig. 4, 6 and 7 and a report of the paper's claims against ours",
+        description="Runs (or resumes) the three experiments under --out and writes report.md: each claim "
+        "of the paper, its number, ours, and whether ours agrees. --quick takes a few minutes on 2 cores.",
+    )
+    reproduce.add_argument("--quick", action="store_true", help="few sizes, objects and trials")
+    reproduce.add_argument("--workers", type=int, help="worker processes (default: all cores)")
+    reproduce.add_argument("--energy", choices=["contact", "contact-quality"], default="contact-quality",
+                           help="the Eigengrasp planner's energy for Fig. 7")
+    reproduce.add_argument("--seed", type=int, default=0, help="first trial seed (default 0)")
+    reproduce.add_argument("--out", metavar="DIR", help="output folder (default out/reproduce[-quick])")
+    reproduce.add_argument("--json", action="store_true", help="print one JSON object instead of the table")
+    reproduce.set_defaults(run=_run_reproduce)
     eigengrasp = sub.add_parser(
         "plan-eigengrasp",
         help="plan grasps with GraspIt!'s Eigengrasp planner (the compliance-agnostic baseline)",
@@ -392,6 +407,25 @@ def _run_fig7(args) -> int:
     else:
         print("\n".join(lines))
         print(f"fig7: {wall:.0f} s; {out / 'fig7.csv'}, {figures[0]}, {figures[1]}")
+    return 0
+
+
+def _run_reproduce(args) -> int:
+    from drake_grasp.experiments import reproduce
+
+    _check_seed(args.seed)
+    if args.workers is not None and args.workers < 1:
+        raise UsageError(f"--workers must be >= 1, got {args.workers}")
+    out = pathlib.Path(args.out or ("out/reproduce-quick" if args.quick else "out/reproduce"))
+    report, claims, wall = reproduce.run(out, args.quick, args.workers, args.seed, args.energy)
+    if args.json:
+        print(json.dumps({"report": str(report), "wall_time": wall,
+                          "claims": [dataclasses.asdict(c) for c in claims]}))
+    else:
+        for c in claims:
+            print(f"[{c.agrees:>6}] {c.claim}: paper {c.paper}; ours {c.ours}")
+        print(f"reproduce: {sum(c.agrees == 'yes' for c in claims)}/{len(claims)} claims agree; "
+              f"{wall:.0f} s; report {report}")
     return 0
 
 

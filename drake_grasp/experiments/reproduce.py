@@ -1,0 +1,167 @@
+"""The whole paper in one command: Fig. 4, Fig. 6 and Fig. 7, and a report of claim against result.
+
+`run` runs (or resumes) the three experiments into one output folder and writes ``report.md``: for each
+claim of the paper, the paper's number or statement, ours, and whether ours agrees. The verdicts are
+computed from the measured results with the rules stated beside each claim; nothing is tuned to agree.
+"""
+
+import dataclasses
+import pathlib
+import time
+
+import numpy as np
+
+from drake_grasp.experiments import fig4, fig6, fig7
+
+ANNULUS = ("banana", "apple", "bell_pepper", "sponge", "spectacle_case", "toy_bridge")
+
+
+@dataclasses.dataclass
+class Claim:
+    claim: str
+    paper: str
+    ours: str
+    agrees: str  # "yes", "no", "partly", "n/a"
+    rule: str
+
+
+def fig4_claims(summaries: dict) -> list[Claim]:
+    claims = []
+    for shape in ("sphere", "cylinder"):
+        s = summaries.get(shape)
+        if s is None:
+            continue
+        both = (s.mean("x") + s.mean("y")) / 2
+        peak = int(np.argmax(both))
+        interior = 0 < peak < len(both) - 1
+        falls = both[-1] < 0.1 * both[peak]
+        claims.append(Claim(
+            f"Fig. 4 ({shape}s): success peaks at medium sizes (the annulus) and declines past it",
+            "peak at medium sizes, decline for larger ones",
+            f"eps_mean peaks at {s.sizes[peak] * 100:.1f} cm ({both[peak]:.3f}); at {s.sizes[-1] * 100:.0f} cm "
+            f"{both[-1]:.3f}",
+            "yes" if interior and falls else "no",
+            "peak not at the smallest or largest size, and eps_mean at the largest size < 10 % of the peak"))
+    cube = summaries.get("cube")
+    if cube is not None:
+        both = (cube.mean("x") + cube.mean("y")) / 2
+        peak = int(np.argmax(both))
+        drop = [j for j in range(peak + 1, len(both)) if both[j] < 0.1 * both[peak]]
+        claims.append(Claim(
+            "Fig. 4 (cubes): a sudden drop for large cubes", "sudden drop (only two fingers touch)",
+            (f"eps_mean falls from {both[peak]:.3f} at {cube.sizes[peak] * 100:.1f} cm to below 10 % of it at "
+             f"{cube.sizes[drop[0]] * 100:.1f} cm (open proximal links land flat on the top face)")
+            if drop else "no drop",
+            "partly" if drop else "no",
+            "a size past the peak with eps_mean < 10 % of the peak; the paper's cause (two fingers) differs"))
+    return claims
+
+
+def fig6_claims(stats: dict) -> list[Claim]:
+    claims = []
+    ok = n = 0
+    for per_grasp in stats.values():
+        choice = fig6.chosen_grasp(per_grasp)
+        if choice:
+            ok += per_grasp[choice].successes
+            n += per_grasp[choice].trials
+    if n:
+        rate = ok / n
+        claims.append(Claim("Fig. 6: the chosen grasps succeed", "95.6 % (86/90)", f"{100 * rate:.1f} % ({ok}/{n})",
+                            "yes" if abs(rate - 86 / 90) <= 0.10 else "no", "within 10 points of the paper"))
+    annulus = [o for o in ANNULUS if o in stats]
+    if annulus:
+        low = min(s.rate for o in annulus for s in stats[o].values() if s.trials)
+        claims.append(Claim("Fig. 6: in the annulus all three grasps do about equally well",
+                            "all grasps high in the annulus",
+                            f"lowest success of any grasp on an annulus object: {100 * low:.0f} %",
+                            "yes" if low >= 0.7 else "no", "every grasp on every annulus object >= 70 %"))
+    ball = stats.get("soccer_ball")
+    if ball:
+        rates = {g: s.rate for g, s in ball.items()}
+        only = rates["spherical"] >= 0.8 and max(rates["cylindrical"], rates["box"]) <= 0.2
+        claims.append(Claim("Fig. 6: on the soccer ball only the spherical grasp works", "only spherical",
+                            ", ".join(f"{g} {100 * r:.0f} %" for g, r in rates.items()),
+                            "yes" if only else ("partly" if rates["spherical"] >= 0.8 else "no"),
+                            "spherical >= 80 % and the others <= 20 %"))
+    rays = [o for o in ("soccer_ball", "game_box", "bottle_case") if o in stats]
+    for o in rays:
+        rates = sorted((s.rate for s in stats[o].values()), reverse=True)
+        clear = rates[0] - rates[-1] >= 0.5
+        claims.append(Claim(f"Fig. 6: on the {o} (a sun ray) one grasp is clearly better", "one grasp clearly best",
+                            ", ".join(f"{g} {100 * s.rate:.0f} %" for g, s in stats[o].items()),
+                            "yes" if clear else "no", "best minus worst grasp >= 50 points"))
+    return claims
+
+
+def fig7_claims(comparison: list) -> list[Claim]:
+    claims = []
+    by = {c.object: c for c in comparison}
+    for o in ("bottle_case", "soccer_ball"):
+        if o in by:
+            c = by[o]
+            claims.append(Claim(f"Fig. 7: the planner fails every attempt on the {o}", "0 %",
+                                f"planner average {100 * c.eigengrasp_average:.0f} %, best {100 * c.eigengrasp_best:.0f} %",
+                                "yes" if c.eigengrasp_average == 0 else "no", "planner average = 0"))
+    if "game_box" in by:
+        c = by["game_box"]
+        claims.append(Claim("Fig. 7: game box 100 % for both methods", "100 % / 100 %",
+                            f"compliance-centric {100 * c.compliant:.0f} %, planner best {100 * c.eigengrasp_best:.0f} %",
+                            "yes" if c.compliant >= 0.9 and c.eigengrasp_best >= 0.9 else "no", "both >= 90 %"))
+    for o in ("sponge", "toy_bridge", "spectacle_case"):
+        if o in by:
+            c = by[o]
+            equal = abs(c.compliant - c.eigengrasp_best) <= 0.2
+            paper = "not equal" if o == "spectacle_case" else "equal"
+            agrees = (not equal) if o == "spectacle_case" else equal
+            claims.append(Claim(f"Fig. 7: annulus object {o}: the two methods are {paper}", paper,
+                                f"compliance-centric {100 * c.compliant:.0f} %, planner best {100 * c.eigengrasp_best:.0f} %",
+                                "yes" if agrees else "no", "equal = within 20 points (planner's best grasp)"))
+    return claims
+
+
+def write_report(path: pathlib.Path, claims: list[Claim], wall_time: float, quick: bool, energy: str,
+                 figures: list[pathlib.Path]) -> None:
+    agree = sum(c.agrees == "yes" for c in claims)
+    lines = [
+        "# drake-grasp: the paper's claims against this reproduction",
+        "",
+        f"Run: {'quick' if quick else 'full'}; wall time {wall_time:.0f} s; Fig. 7 planner energy: {energy}. "
+        f"{agree} of {len(claims)} claims agree.",
+        "",
+        "| claim | paper | ours | agrees | rule |",
+        "|---|---|---|---|---|",
+    ]
+    lines += [f"| {c.claim} | {c.paper} | {c.ours} | {c.agrees} | {c.rule} |" for c in claims]
+    lines += ["", "Figures: " + ", ".join(f"[{p.name}]({p.parent.name}/{p.name})" for p in figures), ""]
+    if quick:
+        lines += ["A quick run uses few sizes, objects and trials: its verdicts are indicative only.", ""]
+    tmp = path.with_suffix(".tmp")
+    tmp.write_text("\n".join(lines))
+    tmp.replace(path)
+
+
+def run(out_dir: pathlib.Path, quick: bool, workers: int | None = None, seed: int = 0,
+        energy: str = "contact-quality") -> tuple[pathlib.Path, list[Claim], float]:
+    """Runs (or resumes) Fig. 4, 6 and 7 under out_dir and writes out_dir/report.md."""
+    from drake_grasp.objects import PAPER_OBJECTS
+
+    start = time.perf_counter()
+    out_dir.mkdir(parents=True, exist_ok=True)
+    config4 = fig4.Fig4Config.quick() if quick else fig4.Fig4Config.full()
+    rows4 = fig4.run_fig4(config4, out_dir / "fig4", workers=workers)
+    summaries4 = fig4.summarise(rows4)
+    figures = list(fig4.plot(summaries4, out_dir / "fig4"))
+    trials = 2 if quick else 10
+    config6 = fig6.Fig6Config(objects=fig6.QUICK_OBJECTS if quick else PAPER_OBJECTS, trials=trials, seed=seed)
+    stats6, f6, _, _ = fig6.run_sweep(config6, out_dir / "fig6", workers)
+    figures += f6
+    config7 = fig7.Fig7Config(objects=fig7.QUICK_OBJECTS if quick else fig7.OBJECTS, trials=trials, seed=seed,
+                              energy=energy)
+    comparison, f7, _ = fig7.run_comparison(config7, out_dir / "fig7", out_dir / "fig6", workers)
+    figures += f7
+    claims = fig4_claims(summaries4) + fig6_claims(stats6) + fig7_claims(comparison)
+    wall = time.perf_counter() - start
+    report = out_dir / "report.md"
+    write_report(report, claims, wall, quick, energy, figures)
+    return report, claims, wall

@@ -1,0 +1,41 @@
+"""The reproduction report: verdicts follow the stated rules from the measured numbers."""
+
+import json
+
+from drake_grasp.experiments import fig6, fig7, reproduce
+
+
+def _stats(rates: dict[str, dict[str, float]]):
+    rows = []
+    for obj, per in rates.items():
+        for grasp, rate in per.items():
+            for i in range(10):
+                rows.append({"object": obj, "grasp": grasp, "seed": str(i), "success": "1" if i < rate * 10 else "0",
+                             "extra": json.dumps({"resemblance": {"sphere": 0.9 if grasp == "spherical" else 0.1,
+                                                                  "cylinder": 0.2, "box": 0.1}})})
+    return fig6.grasp_stats(rows, list(rates))
+
+
+def test_fig6_claims_follow_the_rules():
+    stats = _stats({"apple": {"spherical": 1.0, "cylindrical": 0.9, "box": 0.8},
+                    "soccer_ball": {"spherical": 1.0, "cylindrical": 0.1, "box": 0.0}})
+    claims = {c.claim: c for c in reproduce.fig6_claims(stats)}
+    assert claims["Fig. 6: the chosen grasps succeed"].agrees == "yes"  # 20/20 is within 10 points of 95.6 %
+    assert claims["Fig. 6: in the annulus all three grasps do about equally well"].agrees == "yes"
+    assert claims["Fig. 6: on the soccer ball only the spherical grasp works"].agrees == "yes"
+    worse = _stats({"soccer_ball": {"spherical": 1.0, "cylindrical": 1.0, "box": 0.0}})
+    claims = {c.claim: c for c in reproduce.fig6_claims(worse)}
+    assert claims["Fig. 6: on the soccer ball only the spherical grasp works"].agrees == "partly"
+
+
+def test_fig7_claims_and_report(tmp_path):
+    rows = [fig7.Comparison("soccer_ball", 1.0, 10, "spherical", 0.0, 0.0, 30, {}),
+            fig7.Comparison("game_box", 1.0, 10, "box", 0.2, 0.6, 30, {})]
+    claims = reproduce.fig7_claims(rows)
+    verdicts = {c.claim: c.agrees for c in claims}
+    assert verdicts["Fig. 7: the planner fails every attempt on the soccer_ball"] == "yes"
+    assert verdicts["Fig. 7: game box 100 % for both methods"] == "no"
+    path = tmp_path / "report.md"
+    reproduce.write_report(path, claims, 12.0, True, "contact-quality", [])
+    text = path.read_text()
+    assert "1 of 2 claims agree" in text and "| Fig. 7: game box 100 % for both methods |" in text
