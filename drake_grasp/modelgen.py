@@ -14,7 +14,6 @@ so the joint angles in Drake are exactly the D-H joint variables (Theta for the 
 
 from __future__ import annotations
 
-import math
 import pathlib
 
 import numpy as np
@@ -290,7 +289,7 @@ def wam_sdf() -> str:
             "<dynamics><damping>0.1</damping></dynamics></axis></joint>"
         )
         parent = parent_frame = link
-    parts.append(f'<frame name="wam_flange" attached_to="wam_link_7"><pose>0 0 0 0 0 0</pose></frame>')
+    parts.append('<frame name="wam_flange" attached_to="wam_link_7"><pose>0 0 0 0 0 0</pose></frame>')
     parts.append("</model>")
     parts.append("</sdf>")
     return "\n".join(parts) + "\n"

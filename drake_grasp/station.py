@@ -28,7 +28,6 @@ import dataclasses
 import math
 import pathlib
 
-import numpy as np
 from pydrake.geometry import (
     MakeRenderEngineVtk,
     RenderEngineVtkParams,

@@ -9,7 +9,7 @@ import pytest
 from pydrake.math import RigidTransform, RotationMatrix
 
 from drake_grasp import cli
-from drake_grasp.grasps import GraspPlan, oracle_estimate, plan_compliant_grasp
+from drake_grasp.grasps import oracle_estimate, plan_compliant_grasp
 from drake_grasp.objects import paper_object
 from drake_grasp.station import load_scenario
 from drake_grasp.trial import MISSED, UNREACHABLE, run_trial

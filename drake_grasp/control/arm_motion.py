@@ -15,7 +15,6 @@ from pydrake.multibody.inverse_kinematics import InverseKinematics
 from pydrake.multibody.plant import MultibodyPlant
 from pydrake.multibody.tree import ModelInstanceIndex
 from pydrake.solvers import Solve
-from pydrake.systems.framework import Context
 from pydrake.trajectories import PiecewisePolynomial
 
 from drake_grasp.hand import HAND_JOINTS
