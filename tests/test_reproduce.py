@@ -36,6 +36,7 @@ def test_fig7_claims_and_report(tmp_path):
     assert verdicts["Fig. 7: the planner fails every attempt on the soccer_ball"] == "yes"
     assert verdicts["Fig. 7: game box 100 % for both methods"] == "no"
     path = tmp_path / "report.md"
-    reproduce.write_report(path, claims, 12.0, True, "contact-quality", [])
+    reproduce.write_report(path, claims, 12.0, True, "contact-quality", [], {"fig6": "24 rows"})
     text = path.read_text()
+    assert "reused: fig6 24 rows" in text
     assert "1 of 2 claims agree" in text and "| Fig. 7: game box 100 % for both methods |" in text
