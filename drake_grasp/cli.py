@@ -182,13 +182,7 @@ def _run_resemble(args) -> int:
         scenario, spec = apply_variation(scenario, spec, TrialVariation.draw(args.seed, scenario.protocol))
     result = explore(scenario, None, spec, look_at=look_at, replay_html=str(replay) if replay else None)
     record = dict(comparison_record(result, spec), seed=args.seed, nominal=args.nominal)
-    if args.out:
-        out = pathlib.Path(args.out)
-        out.mkdir(parents=True, exist_ok=True)
-        _write_json_atomically(out / f"resemble_{spec.name}_{args.seed}.json", record)
-    print(json.dumps(_jsonable(record)) if args.json else "\n".join(format_comparison(record)))
-    if replay and not args.json:
-        print(f"replay: {replay}")
+    _emit(args, record, f"resemble_{spec.name}_{args.seed}.json", "\n".join(format_comparison(record)), replay)
     return 0 if result.estimate.found else 1
 
 
@@ -207,6 +201,21 @@ def _load_scenario(args):
     from drake_grasp.station import DEFAULT_SCENARIO_FILE, load_scenario
 
     return load_scenario(args.scenario or DEFAULT_SCENARIO_FILE, args.scenario_name)
+
+
+def _emit(args, record: dict, filename: str, summary: str, replay: pathlib.Path | None) -> None:
+    """Writes a single run's record to --out (atomically) and prints it: one JSON object with
+    --json, else the summary (and where the replay went)."""
+    if args.out:
+        out = pathlib.Path(args.out)
+        out.mkdir(parents=True, exist_ok=True)
+        _write_json_atomically(out / filename, record)
+    if args.json:
+        print(json.dumps(_jsonable(record)))
+    else:
+        print(summary)
+        if replay:
+            print(f"replay: {replay}")
 
 
 def _check_seed(seed: int) -> None:
@@ -235,26 +244,14 @@ def _run_demo(args) -> int:
     mode = ComplianceMode.parse(args.mode) if args.mode else None
     result = run_demo(scenario, mode=mode, replay_html=str(replay) if replay else None, object_spec=spec,
                       seed=args.seed)
-    record = dataclasses.asdict(result)
-    if args.out:
-        out = pathlib.Path(args.out)
-        out.mkdir(parents=True, exist_ok=True)
-        _write_json_atomically(out / "demo.json", record)
-    if args.json:
-        print(json.dumps(_jsonable(record)))
-    else:
-        print(result.summary())
-        if replay:
-            print(f"replay: {replay}")
+    _emit(args, dataclasses.asdict(result), "demo.json", result.summary(), replay)
     return 0
 
 
 def _run_fig4(args) -> int:
     from drake_grasp.experiments import fig4
 
-    _check_seed(args.seed)
-    if args.workers is not None and args.workers < 1:
-        raise UsageError(f"--workers must be >= 1, got {args.workers}")
+    _check_sweep_args(args)
     config = fig4.Fig4Config.quick() if args.quick else fig4.Fig4Config.full()
     out = pathlib.Path(args.out or args.out_default)
     start = time.perf_counter()
@@ -299,14 +296,8 @@ def _run_trial(args) -> int:
     else:
         record = run_compliant_trial(scenario, spec, seed=args.seed, grasp=args.grasp,
                                      replay_html=str(replay) if replay else None)
-    fields = dataclasses.asdict(record)
-    if args.out:
-        out = pathlib.Path(args.out)
-        out.mkdir(parents=True, exist_ok=True)
-        _write_json_atomically(out / f"trial_{record.object}_{record.grasp}_{record.seed}.json", fields)
-    print(json.dumps(_jsonable(fields)) if args.json else record.summary())
-    if replay and not args.json:
-        print(f"replay: {replay}")
+    _emit(args, dataclasses.asdict(record), f"trial_{record.object}_{record.grasp}_{record.seed}.json",
+          record.summary(), replay)
     return 0
 
 
@@ -353,7 +344,7 @@ def _check_sweep_args(args) -> None:
     _check_seed(args.seed)
     if args.workers is not None and args.workers < 1:
         raise UsageError(f"--workers must be >= 1, got {args.workers}")
-    if args.trials is not None and args.trials < 1:
+    if getattr(args, "trials", None) is not None and args.trials < 1:
         raise UsageError(f"--trials must be >= 1, got {args.trials}")
 
 
@@ -413,9 +404,7 @@ def _run_fig7(args) -> int:
 def _run_reproduce(args) -> int:
     from drake_grasp.experiments import reproduce
 
-    _check_seed(args.seed)
-    if args.workers is not None and args.workers < 1:
-        raise UsageError(f"--workers must be >= 1, got {args.workers}")
+    _check_sweep_args(args)
     out = pathlib.Path(args.out or ("out/reproduce-quick" if args.quick else "out/reproduce"))
     report, claims, wall = reproduce.run(out, args.quick, args.workers, args.seed, args.energy)
     if args.json:
