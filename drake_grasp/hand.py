@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import dataclasses
 import enum
+import functools
 import math
 
 # --- Kinematics (BH8 manual D-H table; DESIGN.md §3). Lengths in metres. -------------------------
@@ -178,6 +179,7 @@ def distal_points_in_base(finger: int, spread: float, proximal: float, distal: f
     return P @ T[:3, :3].T + T[:3, 3]
 
 
+@functools.lru_cache(maxsize=32)
 def fingertip_sweep_depth(spread: float = 0.0, samples: int = 141) -> float:
     """How far beyond the palm surface the fingers reach while closing in the coupled phase, m.
 
