@@ -43,10 +43,11 @@ from drake_grasp.paths import DIAGRAMS_DIR
 from drake_grasp.primitives.camera import SegmentationParams, SilhouetteCamera
 from drake_grasp.primitives.camera_model import CameraIntrinsics
 from drake_grasp.primitives.depth import DepthParams, DepthPrimitive
+from drake_grasp.primitives.estimate import ObjectEstimate, ObjectEstimator
 from drake_grasp.primitives.principal_axis import PrincipalAxisParams, PrincipalAxisPrimitive
 from drake_grasp.primitives.resemblance import DEFAULT_ARCS, ResemblanceParams, ShapeResemblancePrimitive
 from drake_grasp.primitives.scores import SHAPES, ScoreParams
-from drake_grasp.primitives.sequencer import ExplorationSequencer, Phase, SequencerParams, phase_value
+from drake_grasp.primitives.sequencer import ExplorationSequencer, Phase, SequencerParams
 from drake_grasp.station import MakeStation, Scenario, Station, object_rest_pose
 from drake_grasp.yaml_config import load_named
 
@@ -113,6 +114,7 @@ class VisualPrimitives:
     resemblance: dict[str, ShapeResemblancePrimitive]
     twist_sum: Adder
     camera_motion: CameraTwistController
+    estimator: ObjectEstimator
 
     def primitives(self) -> list:
         return [self.depth, self.axis] + [self.resemblance[s] for s in SHAPES]
@@ -129,18 +131,22 @@ def camera_mount(station: Station) -> tuple:
     return frame, station.scenario.camera.X_PB.GetDeterministicValue()
 
 
-def AddVisualPrimitives(builder: DiagramBuilder, station: Station, station_system, config: PerceptionConfig
-                        ) -> VisualPrimitives:
-    """Adds the fixed-rate camera, the primitives, the twist sum and the camera motion controller.
+def AddVisualPrimitives(builder: DiagramBuilder, station: Station, station_system, config: PerceptionConfig,
+                        *, connect_arm: bool = True) -> VisualPrimitives:
+    """Adds the fixed-rate camera, the primitives, the twist sum, the camera motion controller and
+    the estimator that gathers the primitives' outputs.
 
-    Connects the station's camera outputs to the camera, and the controller to the station's
-    `wam.desired_state`. The primitives' `command` inputs are left for the caller to drive.
+    Connects the station's camera outputs to the camera, and (with `connect_arm`) the controller to
+    the station's `wam.desired_state`. The primitives' `command` inputs and the estimator's `phase`
+    are left for the caller to drive.
 
     Args:
         builder: the builder that holds `station_system`.
         station: the station (MakeStation with camera=True).
         station_system: the station's Diagram as added to `builder`.
         config: the choices.
+        connect_arm: False when the caller routes the camera motion to the arm itself (a supervisor
+            that moves the arm after the exploration).
     """
     intrinsics = CameraIntrinsics.from_camera_config(station.scenario.camera)
     period = config.period
@@ -173,15 +179,27 @@ def AddVisualPrimitives(builder: DiagramBuilder, station: Station, station_syste
     camera_motion = builder.AddNamedSystem("camera_motion", CameraTwistController(
         station.plant, station.wam, frame, X_FC, config.camera_motion))
     builder.Connect(twist_sum.get_output_port(), camera_motion.GetInputPort("V_C_desired"))
-    builder.Connect(camera_motion.GetOutputPort("wam.desired_state"), station_system.GetInputPort("wam.desired_state"))
-    return VisualPrimitives(camera, depth, axis, resemblance, twist_sum, camera_motion)
+    if connect_arm:
+        builder.Connect(camera_motion.GetOutputPort("wam.desired_state"),
+                        station_system.GetInputPort("wam.desired_state"))
+
+    estimator = builder.AddNamedSystem("object_estimator", ObjectEstimator())
+    for source, port, target in ((camera, "camera_sample", "camera_sample"), (depth, "centre", "centre"),
+                                 (depth, "extents", "extents"), (axis, "axis", "axis"),
+                                 (axis, "axis_info", "axis_info"), (resemblance["box"], "evidence", "evidence")):
+        builder.Connect(source.GetOutputPort(port), estimator.GetInputPort(target))
+    for shape in SHAPES:
+        builder.Connect(resemblance[shape].GetOutputPort("resemblance"),
+                        estimator.GetInputPort(f"{shape}_resemblance"))
+    return VisualPrimitives(camera, depth, axis, resemblance, twist_sum, camera_motion, estimator)
 
 
 def AddExplorationSequencer(builder: DiagramBuilder, primitives: VisualPrimitives, config: PerceptionConfig
                             ) -> ExplorationSequencer:
-    """Adds the phase machine and connects its commands to the primitives."""
+    """Adds the phase machine and connects its commands to the primitives and its phase to the estimator."""
     sequencer = builder.AddNamedSystem("exploration_sequencer", ExplorationSequencer(config.period, config.sequencer))
     builder.Connect(primitives.camera.GetOutputPort("camera_sample"), sequencer.GetInputPort("camera_sample"))
+    builder.Connect(sequencer.GetOutputPort("phase"), primitives.estimator.GetInputPort("phase"))
     builder.Connect(sequencer.GetOutputPort("depth_command"), primitives.depth.GetInputPort("command"))
     builder.Connect(sequencer.GetOutputPort("axis_command"), primitives.axis.GetInputPort("command"))
     for shape in SHAPES:
@@ -239,76 +257,6 @@ def start_configuration(station: Station, X_WC: RigidTransform, config: Percepti
 
 
 # --- The result --------------------------------------------------------------------------------------
-
-
-@dataclasses.dataclass
-class ObjectEstimate:
-    """What one exploration found (world frame W; m, rad, s).
-
-    Attributes:
-        status: "ok", or "object not found" (the object never came into view).
-        centre: the object centre (where the rays through the silhouette centroids meet), or None.
-        depth: distance from `camera_position` (the camera at the end) to the centre.
-        camera_position: where the camera was when the exploration ended.
-        principal_axis: unit vector of the object's long axis, or None if the object is not elongated.
-        axes: 3×3, columns (a, b, c): a = the principal axis (or, for a round object, the direction of
-            a silhouette side), b = horizontal across it, c = a × b (up).
-        extents: the object's size along a, b, c: length and width from the silhouette's tangent
-            planes; height = twice the centre's height above the table (it rests on the table).
-        resemblances: {"sphere", "cylinder", "box"} → resemblance in [0, 1].
-        evidence: what the resemblances rest on (variations, invariances, roundness; see scores).
-        elongation: the mean eccentricity of the silhouette over the exploration.
-        timings: build, simulated and wall-clock times, frames rendered, phase start times.
-    """
-
-    status: str
-    centre: np.ndarray | None = None
-    depth: float = math.nan
-    camera_position: np.ndarray | None = None
-    principal_axis: np.ndarray | None = None
-    axes: np.ndarray | None = None
-    extents: np.ndarray | None = None
-    resemblances: dict = dataclasses.field(default_factory=dict)
-    evidence: dict = dataclasses.field(default_factory=dict)
-    elongation: float = math.nan
-    timings: dict = dataclasses.field(default_factory=dict)
-
-    @property
-    def found(self) -> bool:
-        return self.status == "ok"
-
-    @property
-    def best_shape(self) -> str | None:
-        """The shape with the highest resemblance (the compliant grasp to execute), or None."""
-        if not self.resemblances:
-            return None
-        return max(SHAPES, key=lambda s: self.resemblances.get(s, 0.0))
-
-    def as_grasp_estimate(self):
-        """This estimate as `drake_grasp.grasps.ObjectEstimate` (what the compliant grasps take)."""
-        from drake_grasp.grasps import ObjectEstimate as GraspEstimate
-
-        if not self.found:
-            raise ValueError("no estimate: the object was not found")
-        return GraspEstimate(center=np.array(self.centre), R_WB=np.array(self.axes), size=np.array(self.extents),
-                             principal_axis=None if self.principal_axis is None else np.array(self.principal_axis),
-                             source="camera")
-
-    def to_dict(self) -> dict:
-        """Plain data (lists, floats) for JSON."""
-
-        def plain(x):
-            if isinstance(x, np.ndarray):
-                return x.tolist()
-            if isinstance(x, dict):
-                return {k: plain(v) for k, v in x.items()}
-            if isinstance(x, (list, tuple)):
-                return [plain(v) for v in x]
-            if isinstance(x, (np.floating, np.integer)):
-                return x.item()
-            return x
-
-        return {f.name: plain(getattr(self, f.name)) for f in dataclasses.fields(self)}
 
 
 @dataclasses.dataclass
@@ -398,42 +346,9 @@ def explore(scenario: Scenario, config: PerceptionConfig | None = None, object_s
 
 def read_estimate(exploration: Exploration, context, timings: dict | None = None) -> ObjectEstimate:
     """The ObjectEstimate that the primitives' outputs hold in `context` (the exploration's root context)."""
-    primitives = exploration.primitives
-    sequencer = exploration.sequencer
-
-    def output(system, name):
-        return np.array(system.GetOutputPort(name).Eval(system.GetMyContextFromRoot(context)), dtype=float)
-
-    phase = phase_value(output(sequencer, "phase")[0])
-    timings = dict(timings or {})
-    centre = output(primitives.depth, "centre")
-    if phase == Phase.NOT_FOUND or not np.all(np.isfinite(centre)):
-        return ObjectEstimate(status="object not found", timings=timings)
-    X_WC = exploration.station_system.GetOutputPort("camera.X_WC").Eval(
-        exploration.station_system.GetMyContextFromRoot(context))
-    camera_position = X_WC.translation().copy()
-    axis = output(primitives.axis, "axis")
-    elongated, mean_eccentricity, _ = output(primitives.axis, "axis_info")
-    extents = output(primitives.depth, "extents")
-    up = np.array([0.0, 0.0, 1.0])
-    a = axis if np.all(np.isfinite(axis)) else np.array([1.0, 0.0, 0.0])
-    if elongated < 0.5:  # not a principal axis: a silhouette side, taken horizontal
-        a = a - a[2] * up
-        a = a / np.linalg.norm(a) if np.linalg.norm(a) > 1e-6 else np.array([1.0, 0.0, 0.0])
-    b = np.cross(up, a)
-    if np.linalg.norm(b) < 1e-6:  # a vertical axis: any horizontal b
-        b = np.array([0.0, 1.0, 0.0])
-    b /= np.linalg.norm(b)
-    c = np.cross(a, b)
-    resemblances = {s: float(output(primitives.resemblance[s], "resemblance")[0]) for s in SHAPES}
-    evidence_vector = output(primitives.resemblance["box"], "evidence")
-    names = ("variation_a", "variation_b", "eccentricity_0", "invariance_a", "invariance_b", "roundness")
-    evidence = {n: float(v) for n, v in zip(names, evidence_vector)}
-    return ObjectEstimate(
-        status="ok", centre=centre, depth=float(np.linalg.norm(centre - camera_position)),
-        camera_position=camera_position, principal_axis=a.copy() if elongated > 0.5 else None,
-        axes=np.column_stack([a, b, c]), extents=extents, resemblances=resemblances,
-        evidence=evidence, elongation=float(mean_eccentricity), timings=timings)
+    estimator = exploration.primitives.estimator
+    estimate = estimator.GetOutputPort("estimate").Eval(estimator.GetMyContextFromRoot(context))
+    return dataclasses.replace(estimate, timings=dict(timings or {}))
 
 
 # --- Ground truth ------------------------------------------------------------------------------------

@@ -25,13 +25,14 @@ from drake_grasp.hand import HandAction
 
 
 class Phase(enum.IntEnum):
-    MOVE = 0  # to the pre-grasp pose, hand opening to the mode's spread
-    PRESHAPE = 1  # fingers to a planned posture (planned grasps only)
-    APPROACH = 2  # along the palm normal, until contact or the target
-    CLOSE = 3  # torque close with breakaway
-    LIFT = 4
-    HOLD = 5
-    DONE = 6
+    EXPLORE = 0  # no plan yet: the camera explores (the compliant-grasp supervisor only)
+    MOVE = 1  # to the pre-grasp pose, hand opening to the mode's spread
+    PRESHAPE = 2  # fingers to a planned posture (planned grasps only)
+    APPROACH = 3  # along the palm normal, until contact or the target
+    CLOSE = 4  # torque close with breakaway
+    LIFT = 5
+    HOLD = 6
+    DONE = 7
 
 
 @dataclasses.dataclass
@@ -50,14 +51,54 @@ class ExecutionTimes:
     update_period: float = 0.01  # s
 
 
+@dataclasses.dataclass(frozen=True)
+class GraspMotion:
+    """The arm's motion for one plan, planned before anything moves (an unreachable plan fails first).
+
+    Attributes:
+        plan: the grasp.
+        q_pregrasp: arm joint angles at the pre-grasp pose, rad.
+        approach_path: joint angles along the straight approach line, from q_pregrasp to the target.
+        move_time: duration of the move from the start configuration to q_pregrasp, s.
+        approach_duration: duration of the whole approach at the approach speed, s.
+    """
+
+    plan: GraspPlan
+    q_pregrasp: np.ndarray
+    approach_path: list
+    move_time: float
+    approach_duration: float
+
+    @property
+    def has_preshape(self) -> bool:
+        """Whether the plan sets the fingers to a posture before the approach (planned grasps)."""
+        return any(abs(a) > 1e-9 for a in self.plan.finger_preshape)
+
+
 @dataclasses.dataclass
 class _Progress:
+    """The executor's abstract state.
+
+    Attributes:
+        phase, phase_start: the current Phase and when it began, s.
+        trajectory: PiecewisePolynomial of the arm's joint angles that the phase follows.
+        motion: the plan's arm motion (None until a plan is known).
+        stopped_on_contact: the approach ended on touch, not at its target.
+        approach_travel: how far the palm went along the approach, m.
+        phase_times: start time of every phase entered, s.
+        outcome: why the sequence ended before grasping (e.g. the arm could not reach), or "".
+        decision: what the supervisor decided (see `supervisor.Decision`), or None.
+    """
+
     phase: Phase
     phase_start: float
-    trajectory: object  # PiecewisePolynomial of the arm's joint angles
+    trajectory: object
+    motion: GraspMotion | None = None
     stopped_on_contact: bool = False
     approach_travel: float = 0.0
     phase_times: dict = dataclasses.field(default_factory=dict)
+    outcome: str = ""
+    decision: object = None
 
 
 class GraspExecutor(LeafSystem):
@@ -76,39 +117,56 @@ class GraspExecutor(LeafSystem):
     """
 
     def __init__(self, plant: MultibodyPlant, scene_graph: SceneGraph, wam: ModelInstanceIndex, hand_bodies: list,
-                 plan: GraspPlan, q_start: np.ndarray, times: ExecutionTimes):
+                 plan: GraspPlan | None, q_start: np.ndarray, times: ExecutionTimes):
+        """
+        Args:
+            plant, scene_graph, wam: the station's.
+            hand_bodies: the hand's body indices (contact on them ends the approach).
+            plan: the grasp to run from time 0; None for a subclass that decides it later (it starts
+                in Phase.EXPLORE, holding the arm at q_start, until it calls `_start_grasp`).
+            q_start: the arm's joint angles at time 0, rad.
+            times: the sequence's timings.
+        """
         super().__init__()
         self._inspector = scene_graph.model_inspector()
-        self._plan = plan
         self._times = times
         self._kinematics = ArmKinematics(plant, wam)
         self._hand_bodies = set(int(b) for b in hand_bodies)
         self._plant = plant
-        # Plan the arm's motion up to the end of the approach now: an unreachable plan fails before
-        # anything moves.
         q_start = np.asarray(q_start, float)
-        self._q_pregrasp = self._kinematics.solve(plan.X_WP_pregrasp, q_start)
-        self._approach_path = self._kinematics.straight_line(plan.X_WP_pregrasp, plan.X_WP_target, self._q_pregrasp,
-                                                             step=0.01)
-        move_time = max(1.0, float(np.max(np.abs(self._q_pregrasp - q_start))) / times.joint_speed)
-        path = JointPath()
-        path.add(0.0, q_start)
-        path.add(move_time, self._q_pregrasp)
-        self._move_time = move_time
-        self._has_preshape = any(abs(a) > 1e-9 for a in plan.finger_preshape)
-        self._approach_duration = plan.approach_distance / times.approach_speed
+        initial = _Progress(Phase.EXPLORE, 0.0, _hold(q_start, 0.0), phase_times={Phase.EXPLORE: 0.0})
+        if plan is not None:
+            initial = self._start_grasp(initial, plan, q_start, 0.0)
 
         self.DeclareVectorInputPort("wam_state", 14)
         self.DeclareAbstractInputPort("contact_results", AbstractValue.Make(ContactResults()))
-        self._progress_index = self.DeclareAbstractState(
-            AbstractValue.Make(_Progress(Phase.MOVE, 0.0, path.ToTrajectory(), phase_times={Phase.MOVE: 0.0})))
+        self._progress_index = self.DeclareAbstractState(AbstractValue.Make(initial))
         self.DeclarePeriodicUnrestrictedUpdateEvent(times.update_period, 0.0, self._Update)
         self.DeclareVectorOutputPort("wam_desired_state", 14, self._CalcDesiredState,
                                      {self.abstract_state_ticket(self._progress_index), self.time_ticket()})
         self.DeclareVectorOutputPort("hand_command", 2, self._CalcHandCommand,
                                      {self.abstract_state_ticket(self._progress_index)})
-        self.DeclareVectorOutputPort("finger_preshape", 3, self._CalcPreshape, {self.nothing_ticket()})
+        self.DeclareVectorOutputPort("finger_preshape", 3, self._CalcPreshape,
+                                     {self.abstract_state_ticket(self._progress_index)})
         self.DeclareVectorOutputPort("phase", 1, self._CalcPhase, {self.abstract_state_ticket(self._progress_index)})
+
+    def plan_motion(self, plan: GraspPlan, q_start: np.ndarray) -> GraspMotion:
+        """The arm's motion for `plan` from joint angles q_start (raises ReachError if unreachable)."""
+        q_pregrasp = self._kinematics.solve(plan.X_WP_pregrasp, q_start)
+        approach_path = self._kinematics.straight_line(plan.X_WP_pregrasp, plan.X_WP_target, q_pregrasp, step=0.01)
+        move_time = max(1.0, float(np.max(np.abs(q_pregrasp - q_start))) / self._times.joint_speed)
+        return GraspMotion(plan, q_pregrasp, approach_path, move_time, plan.approach_distance / self._times.approach_speed)
+
+    def _start_grasp(self, progress: _Progress, plan: GraspPlan, q_start: np.ndarray, t: float) -> _Progress:
+        """Plans `plan`'s motion from q_start and enters Phase.MOVE at time t (raises ReachError)."""
+        motion = self.plan_motion(plan, q_start)
+        path = JointPath()
+        path.add(t, q_start)
+        path.add(t + motion.move_time, motion.q_pregrasp)
+        phase_times = dict(progress.phase_times)
+        phase_times[Phase.MOVE] = t
+        return dataclasses.replace(progress, phase=Phase.MOVE, phase_start=t, trajectory=path.ToTrajectory(),
+                                   motion=motion, phase_times=phase_times)
 
     # --- Reading the state. -----------------------------------------------------------------------
 
@@ -131,19 +189,25 @@ class GraspExecutor(LeafSystem):
         output.SetFromVector(np.concatenate([q, v]))
 
     def _CalcHandCommand(self, context: Context, output: BasicVector) -> None:
-        phase = self.progress(context).phase
+        progress = self.progress(context)
+        phase, motion = progress.phase, progress.motion
+        if motion is None:  # exploring, or ended before a grasp: the hand open, fingers together
+            output.SetFromVector([0.0, float(HandAction.OPEN)])
+            return
         if phase <= Phase.MOVE:
             action = HandAction.OPEN
-        elif phase == Phase.PRESHAPE or (phase == Phase.APPROACH and self._has_preshape):
+        elif phase == Phase.PRESHAPE or (phase == Phase.APPROACH and motion.has_preshape):
             action = HandAction.PRESHAPE
         elif phase == Phase.APPROACH:
             action = HandAction.OPEN
         else:
             action = HandAction.CLOSE
-        output.SetFromVector([self._plan.spread, float(action)])
+        output.SetFromVector([motion.plan.spread, float(action)])
 
     def _CalcPreshape(self, context: Context, output: BasicVector) -> None:
-        output.SetFromVector(np.asarray(self._plan.finger_preshape[:3], float))
+        motion = self.progress(context).motion
+        preshape = motion.plan.finger_preshape[:3] if motion is not None else np.zeros(3)
+        output.SetFromVector(np.asarray(preshape, float))
 
     def _CalcPhase(self, context: Context, output: BasicVector) -> None:
         output.SetFromVector([float(self.progress(context).phase)])
@@ -181,34 +245,45 @@ class GraspExecutor(LeafSystem):
         t = context.get_time()
         elapsed = t - progress.phase_start
         times = self._times
-        if progress.phase == Phase.MOVE and t >= self._move_time:
-            progress = self._enter(progress, Phase.PRESHAPE if self._has_preshape else Phase.APPROACH, t)
+        motion = progress.motion
+        if progress.phase == Phase.EXPLORE:
+            progress = self._Explore(context, progress)
+        elif progress.phase == Phase.MOVE and elapsed >= motion.move_time:
+            progress = self._enter(progress, Phase.PRESHAPE if motion.has_preshape else Phase.APPROACH, t)
         elif progress.phase == Phase.PRESHAPE and elapsed >= times.preshape_time:
             progress = self._enter(progress, Phase.APPROACH, t)
         elif progress.phase == Phase.APPROACH:
             done = t >= progress.trajectory.end_time()
-            if self._plan.stop_on_contact and self._hand_contact_force(context) > times.touch_force:
+            if motion.plan.stop_on_contact and self._hand_contact_force(context) > times.touch_force:
                 progress.stopped_on_contact = True
                 done = True
             if done:
-                progress.approach_travel = times.approach_speed * min(elapsed, self._approach_duration)
+                progress.approach_travel = times.approach_speed * min(elapsed, motion.approach_duration)
                 progress = self._enter(progress, Phase.CLOSE, t)
         elif progress.phase == Phase.CLOSE and elapsed >= times.close_time:
             progress = self._enter(progress, Phase.LIFT, t)
-
         elif progress.phase == Phase.LIFT and elapsed >= times.lift_time:
             progress = self._enter(progress, Phase.HOLD, t)
         elif progress.phase == Phase.HOLD and elapsed >= times.hold_time:
             progress = self._enter(progress, Phase.DONE, t)
         state.get_mutable_abstract_state(self._progress_index).set_value(progress)
 
+    def _Explore(self, context: Context, progress: _Progress) -> _Progress:
+        """Phase.EXPLORE's update: a subclass that decides the grasp while running overrides it."""
+        raise RuntimeError("GraspExecutor was built without a plan")
+
+    def _end(self, progress: _Progress, t: float, outcome: str) -> _Progress:
+        """Ends the sequence at time t without grasping, saying why; the arm holds still."""
+        return dataclasses.replace(self._enter(progress, Phase.DONE, t), outcome=outcome)
+
     def _enter(self, progress: _Progress, phase: Phase, t: float) -> _Progress:
         """Switches to `phase` at time t, with the arm trajectory that phase follows."""
         q_now = progress.trajectory.value(min(t, progress.trajectory.end_time())).ravel()
         path = JointPath()
+        motion = progress.motion
         if phase == Phase.APPROACH:
             path.add(t, q_now)
-            path.add_segment(t, self._approach_duration, [q_now] + list(self._approach_path[1:]))
+            path.add_segment(t, motion.approach_duration, [q_now] + list(motion.approach_path[1:]))
         elif phase == Phase.LIFT:
             X_WP = self._kinematics.palm_pose(q_now)
             X_up = RigidTransform(X_WP.rotation(), X_WP.translation() + [0.0, 0.0, self._times.lift_height])
@@ -216,8 +291,15 @@ class GraspExecutor(LeafSystem):
             path.add(t, q_now)
             path.add_segment(t, self._times.lift_time, lift)
         else:  # hold still where the arm is
-            path.add(t, q_now)
-            path.add(t + 1.0, q_now)
-        times = dict(progress.phase_times)
-        times[phase] = t
-        return _Progress(phase, t, path.ToTrajectory(), progress.stopped_on_contact, progress.approach_travel, times)
+            return dataclasses.replace(progress, phase=phase, phase_start=t, trajectory=_hold(q_now, t),
+                                       phase_times={**progress.phase_times, phase: t})
+        return dataclasses.replace(progress, phase=phase, phase_start=t, trajectory=path.ToTrajectory(),
+                                   phase_times={**progress.phase_times, phase: t})
+
+
+def _hold(q: np.ndarray, t: float):
+    """A trajectory that holds joint angles q from time t on."""
+    path = JointPath()
+    path.add(t, q)
+    path.add(t + 1.0, q)
+    return path.ToTrajectory()
