@@ -201,6 +201,10 @@ COMPLIANT_GRASPS = {
 }
 
 
+# The compliant grasp for each primitive shape (the decision: the grasp of the most resembling shape).
+GRASP_OF_SHAPE = {"sphere": GraspType.SPHERICAL.value, "cylinder": GraspType.CYLINDRICAL.value, "box": GraspType.BOX.value}
+
+
 def plan_compliant_grasp(grasp: GraspType | str, estimate: ObjectEstimate) -> GraspPlan:
     """The compliant grasp of the given type for the estimate."""
     grasp = GraspType.parse(grasp) if isinstance(grasp, str) else grasp

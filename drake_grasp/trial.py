@@ -25,10 +25,11 @@ from pydrake.multibody.tree import BodyIndex
 from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder
 
-from drake_grasp.control.arm_motion import ReachError
-from drake_grasp.control.grasp_executor import GraspExecutor, Phase
+from drake_grasp.control.arm_motion import UNREACHABLE, ReachError
+from drake_grasp.control.grasp_executor import ConnectGraspExecutor, GraspExecutor, Phase
 from drake_grasp.grasps import GraspPlan
 from drake_grasp.objects import ObjectSpec
+from drake_grasp.primitives.estimate import OBJECT_NOT_FOUND
 from drake_grasp.protocol import TrialVariation
 from drake_grasp.station import MakeStation, Scenario
 
@@ -36,8 +37,10 @@ from drake_grasp.station import MakeStation, Scenario
 MISSED = "missed"
 DROPPED_DURING_LIFT = "dropped during lift"
 SLIPPED_DURING_HOLD = "slipped during hold"
-UNREACHABLE = "arm could not reach"
 SIMULATION_ERROR = "simulation error"
+# Every failure reason, including the two that end a sequence before the grasp: the camera never saw
+# the object, and the arm cannot reach the grasp.
+FAILURES = (MISSED, DROPPED_DURING_LIFT, SLIPPED_DURING_HOLD, OBJECT_NOT_FOUND, UNREACHABLE, SIMULATION_ERROR)
 
 PlanFunction = Callable[[RigidTransform, ObjectSpec], GraspPlan]
 
@@ -97,13 +100,14 @@ def apply_variation(scenario: Scenario, spec: ObjectSpec, variation: TrialVariat
 
 def run_trial(scenario: Scenario, spec: ObjectSpec, plan_function: PlanFunction, *, seed: int, method: str,
               grasp: str, replay_html: str | None = None, monitor_period: float = 0.05) -> TrialRecord:
-    """Runs one trial and returns its record (never raises for a failed grasp or simulation).
+    """Runs one trial of a given grasp plan and returns its record (never raises for a failed grasp
+    or simulation).
 
     Args:
         scenario: the station scenario (its protocol gives the variation, thresholds and timings).
         spec: the object (placed as scenario.object says, then varied by the seed).
-        plan_function: (X_WO of the varied object, its spec) -> GraspPlan. A compliant-grasp method
-            must compute the plan from its estimate only; X_WO is there for oracle and planner methods.
+        plan_function: (X_WO of the varied object, its spec) -> GraspPlan, for oracle and planner
+            methods (the compliance-centric algorithm decides its grasp itself: `run_compliant_trial`).
         seed: the trial's seed: it fixes the variation, the same for every method.
         method, grasp: names for the record.
         replay_html: write a Meshcat replay there.
@@ -117,42 +121,133 @@ def run_trial(scenario: Scenario, spec: ObjectSpec, plan_function: PlanFunction,
                          variation=dataclasses.asdict(variation))
     station = MakeStation(scenario, spec, camera=False)
     plant = station.plant
-    X_WO = station.X_WO_nominal()
+    q_start = np.asarray(protocol.start_configuration, float)
     try:
-        plan = plan_function(X_WO, spec)
-        hand_bodies = plant.GetBodyIndices(station.hand)
-        executor = GraspExecutor(plant, station.scene_graph, station.wam, hand_bodies, plan,
-                                 np.asarray(protocol.start_configuration, float), protocol.execution)
+        plan = plan_function(station.X_WO_nominal(), spec)
+        executor = GraspExecutor(plant, station.scene_graph, station.wam, plant.GetBodyIndices(station.hand), plan,
+                                 q_start, protocol.execution)
     except ReachError as e:
         record.failure, record.detail = UNREACHABLE, str(e)
         record.wall_time = time.perf_counter() - wall_start
         return record
+    record.estimate_source = getattr(plan, "source", "") or ""
 
     builder = DiagramBuilder()
-    builder.AddNamedSystem("station", station.diagram)
+    station_system = builder.AddNamedSystem("station", station.diagram)
     builder.AddNamedSystem("executor", executor)
-    diagram_station = station.diagram
-    builder.Connect(diagram_station.GetOutputPort("wam.state"), executor.GetInputPort("wam_state"))
-    builder.Connect(diagram_station.GetOutputPort("contact_results"), executor.GetInputPort("contact_results"))
-    builder.Connect(executor.GetOutputPort("wam_desired_state"), diagram_station.GetInputPort("wam.desired_state"))
-    builder.Connect(executor.GetOutputPort("hand_command"), diagram_station.GetInputPort("hand.command"))
-    builder.Connect(executor.GetOutputPort("finger_preshape"), diagram_station.GetInputPort("hand.finger_preshape"))
+    ConnectGraspExecutor(builder, station_system, executor)
+    _execute(builder, station, executor, protocol, q_start, record, protocol.execution.hold_time + 60.0, replay_html,
+             monitor_period)
+    record.wall_time = time.perf_counter() - wall_start
+    return record
+
+
+def run_compliant_trial(scenario: Scenario, spec: ObjectSpec, *, seed: int, grasp: str | None = None,
+                        replay_html: str | None = None, perception_config=None,
+                        monitor_period: float = 0.05) -> TrialRecord:
+    """The compliance-centric algorithm, one trial, in one Diagram: explore, decide, grasp.
+
+    The wrist camera starts above the object's *nominal* placement, looking down; the object is placed
+    with the trial's seeded variation. The visual primitives explore it and estimate its centre, axes,
+    size and the three shape resemblances; the supervisor (`control.supervisor`) then executes the
+    grasp of the most resembling shape (or `grasp`, forced by the caller, for Fig. 6's all-grasps
+    protocol), computed from the estimate only, with the same executor, timings and success test as
+    every other method. No ground truth enters the decision or the grasp; the record keeps the
+    estimate and, for evaluation, its errors against the object's true pose when the decision was made.
+    """
+    from drake_grasp.control.supervisor import AddCompliantGraspSupervisor
+    from drake_grasp.perception import (AddExplorationSequencer, AddVisualPrimitives, compare, ground_truth,
+                                        load_perception_config, start_camera_pose, start_configuration)
+
+    wall_start = time.perf_counter()
+    config = perception_config or load_perception_config()
+    protocol = scenario.protocol
+    variation = TrialVariation.draw(seed, protocol)
+    nominal = np.array([scenario.object.x, scenario.object.y, 0.0])
+    scenario, spec = apply_variation(scenario, spec, variation)
+    record = TrialRecord(object=spec.name, method="compliant", grasp=grasp or "", seed=seed, success=False,
+                         failure="", variation=dataclasses.asdict(variation), estimate_source="camera")
+    station = MakeStation(scenario, spec, camera=True)
+    builder = DiagramBuilder()
+    station_system = builder.AddNamedSystem("station", station.diagram)
+    primitives = AddVisualPrimitives(builder, station, station_system, config, connect_arm=False)
+    sequencer = AddExplorationSequencer(builder, primitives, config)
+    q_start = start_configuration(station, start_camera_pose(nominal, config, config.depth.table_height), config)
+    supervisor = AddCompliantGraspSupervisor(builder, station, station_system, primitives, sequencer, q_start,
+                                             protocol.execution, grasp)
+
+    def start_camera_motion(context):
+        motion = primitives.camera_motion
+        motion.SetInitialPositions(motion.GetMyMutableContextFromRoot(context), q_start)
+
+    run = _execute(builder, station, supervisor, protocol, q_start, record,
+                   config.sequencer.total_time + protocol.execution.hold_time + 60.0, replay_html, monitor_period,
+                   start_camera_motion)
+    decision = run.decision
+    if decision is not None:
+        estimate = decision.estimate
+        record.grasp = decision.executed
+        record.chosen_grasp = decision.chosen
+        record.resemblances = dict(estimate.resemblances)
+        record.estimate = {k: v for k, v in estimate.to_dict().items() if k not in ("evidence", "timings")}
+        record.estimate["decided_at"] = decision.time
+        if estimate.found:
+            errors = compare(estimate, ground_truth(spec, run.X_WO_decision))
+            record.estimate_errors = {
+                "centre": errors.centre, "depth": errors.depth, "axis_deg": errors.axis_deg,
+                "extents": [float(e) for e in errors.extents], "shape_correct": errors.shape_correct}
+    record.wall_time = time.perf_counter() - wall_start
+    return record
+
+
+@dataclasses.dataclass
+class _Run:
+    """What `_execute` saw besides the record: the supervisor's decision (None for a given plan) and
+    the object's true pose when the grasp was decided (for evaluating the estimate)."""
+
+    decision: object = None
+    X_WO_decision: RigidTransform | None = None
+
+
+def _execute(builder: DiagramBuilder, station, executor: GraspExecutor, protocol, q_start: np.ndarray,
+             record: TrialRecord, time_limit: float, replay_html: str | None, monitor_period: float,
+             initialize=None) -> _Run:
+    """Builds the Diagram in `builder`, simulates the executor's sequence to its end, and judges it
+    with the success test, filling `record` (failure, lift, slip, contacts, fingers, sim_time).
+
+    Args:
+        builder: holds the station and the executor (or supervisor), connected.
+        station: the station in it.
+        executor: the sequence to run to Phase.DONE.
+        protocol: the scenario's TrialProtocol (the success test's thresholds).
+        q_start: the arm's joint angles at time 0, rad.
+        record: the record to fill.
+        time_limit: simulated time after which the trial fails, s.
+        replay_html: write a Meshcat replay there.
+        monitor_period: how often the phase is checked, s.
+        initialize: called with the root context before the simulation starts (more initial state).
+    """
+    plant = station.plant
+    station_system = station.diagram
     meshcat = None
     if replay_html:
         meshcat = Meshcat()
-        MeshcatVisualizer.AddToBuilder(builder, diagram_station.GetOutputPort("query_object"), meshcat,
+        MeshcatVisualizer.AddToBuilder(builder, station_system.GetOutputPort("query_object"), meshcat,
                                        MeshcatVisualizerParams(role=Role.kIllustration))
     diagram = builder.Build()
-
     simulator = Simulator(diagram)
     context = simulator.get_mutable_context()
     plant_context = plant.GetMyMutableContextFromRoot(context)
-    plant.SetPositions(plant_context, station.wam, np.asarray(protocol.start_configuration, float))
+    plant.SetPositions(plant_context, station.wam, q_start)
     station.hand_controller.SetInitialFingers(station.hand_controller.GetMyMutableContextFromRoot(context))
+    if initialize is not None:
+        initialize(context)
     executor_context = executor.GetMyContextFromRoot(context)
     object_body = plant.get_body(plant.GetBodyIndices(station.object_instance)[0])
     palm = plant.GetFrameByName("bh_palm")
     table_bodies = set(int(b) for b in plant.GetBodyIndices(plant.GetModelInstanceByName("table")))
+    X_WO = station.X_WO_nominal()  # the object at rest on the table: the lift is measured from it
+    run = _Run()
 
     def X_PO() -> RigidTransform:
         return palm.CalcPoseInWorld(plant_context).inverse() @ object_body.EvalPoseInWorld(plant_context)
@@ -162,15 +257,15 @@ def run_trial(scenario: Scenario, spec: ObjectSpec, plan_function: PlanFunction,
         names, on_table = _object_contacts(plant, plant_context, object_body, table_bodies)
         return sorted(names), on_table
 
-    execution = protocol.execution
     if meshcat is not None:
         p = X_WO.translation()
         meshcat.SetCameraPose(p + [0.45, -0.75, 0.45], p)
         meshcat.StartRecording()
     X_PO_hold, contacts_after_close = None, []
-    time_limit = 60.0 + execution.hold_time
     try:
         simulator.Initialize()
+        if executor.phase(executor_context) != Phase.EXPLORE:
+            run.X_WO_decision = object_body.EvalPoseInWorld(plant_context)
         while executor.phase(executor_context) != Phase.DONE:
             if context.get_time() > time_limit:
                 raise RuntimeError(f"the grasp sequence did not finish in {time_limit:.0f} s")
@@ -180,6 +275,8 @@ def run_trial(scenario: Scenario, spec: ObjectSpec, plan_function: PlanFunction,
             p_WO = object_body.EvalPoseInWorld(plant_context).translation()
             if not np.all(np.isfinite(p_WO)) or np.linalg.norm(p_WO) > 10.0:
                 raise RuntimeError("the simulation diverged (object far away or not finite)")
+            if phase_before == Phase.EXPLORE and phase != Phase.EXPLORE:
+                run.X_WO_decision = object_body.EvalPoseInWorld(plant_context)
             if phase_before == Phase.CLOSE and phase == Phase.LIFT:
                 contacts_after_close, _ = touching()
             if phase_before != Phase.HOLD and phase == Phase.HOLD:
@@ -189,8 +286,8 @@ def run_trial(scenario: Scenario, spec: ObjectSpec, plan_function: PlanFunction,
         record.failure = SIMULATION_ERROR
         record.detail = str(e).strip().splitlines()[0] if str(e).strip() else type(e).__name__
         record.sim_time = context.get_time()
-        record.wall_time = time.perf_counter() - wall_start
-        return record
+        run.decision = executor.progress(executor_context).decision
+        return run
     finally:
         if meshcat is not None:
             meshcat.StopRecording()
@@ -199,23 +296,27 @@ def run_trial(scenario: Scenario, spec: ObjectSpec, plan_function: PlanFunction,
                 f.write(meshcat.StaticHtml())
 
     progress = executor.progress(executor_context)
+    run.decision = progress.decision
+    record.sim_time = context.get_time()
+    if progress.outcome:  # the sequence ended before a grasp (object not found, arm could not reach)
+        record.failure, record.detail = progress.outcome, progress.detail
+        return run
     contacts_end, on_table = touching()
     p_WO_end = object_body.EvalPoseInWorld(plant_context).translation()
     record.lift = float(p_WO_end[2] - X_WO.translation()[2])
     record.contacts_after_close = " ".join(contacts_after_close)
     record.contacts_at_end = " ".join(contacts_end)
     record.approach_stopped_on_contact = bool(progress.stopped_on_contact)
-    record.estimate_source = getattr(plan, "source", "") or ""
     q_hand = station.hand_controller._index.joint_positions(plant.get_state_output_port(station.hand).Eval(plant_context))
     record.finger_angles = [float(q_hand[0])] + [float(a) for a in q_hand[2:8]]
-    status = diagram_station.GetOutputPort("hand.finger_status").Eval(diagram_station.GetMyContextFromRoot(context))
+    status = station_system.GetOutputPort("hand.finger_status").Eval(station_system.GetMyContextFromRoot(context))
     record.breakaway = [bool(b > 0.5) for b in status[:3]]
     record.breakaway_angles = [float(a) for a in status[3:]]
     if X_PO_hold is not None:
         slip = X_PO_hold.inverse() @ X_PO()
         record.slip_distance = float(np.linalg.norm(X_PO().translation() - X_PO_hold.translation()))
         record.slip_angle = float(slip.rotation().ToAngleAxis().angle())
-    lift_needed = 0.5 * execution.lift_height
+    lift_needed = 0.5 * protocol.execution.lift_height
     if not contacts_after_close and (X_PO_hold is None or rise_hold < lift_needed):
         record.failure = MISSED
     elif X_PO_hold is None or rise_hold < lift_needed:
@@ -224,61 +325,7 @@ def run_trial(scenario: Scenario, spec: ObjectSpec, plan_function: PlanFunction,
           or record.slip_angle >= math.radians(protocol.slip_angle_deg)):
         record.failure = SLIPPED_DURING_HOLD
     record.success = record.failure == ""
-    record.sim_time = context.get_time()
-    record.wall_time = time.perf_counter() - wall_start
-    return record
-
-
-OBJECT_NOT_FOUND = "object not found"
-GRASP_OF_SHAPE = {"sphere": "spherical", "cylinder": "cylindrical", "box": "box"}
-
-
-def run_compliant_trial(scenario: Scenario, spec: ObjectSpec, *, seed: int, grasp: str | None = None,
-                        replay_html: str | None = None, perception_config=None) -> TrialRecord:
-    """The compliance-centric algorithm, one trial: explore with the wrist camera, decide, grasp.
-
-    The exploration (`drake_grasp.perception`) looks at the object placed with the trial's seeded
-    variation, from a start pose above its *nominal* placement, and estimates its centre, axes, size
-    and the three shape resemblances. The decision is the grasp of the most resembling shape (or
-    `grasp`, forced by the caller, for Fig. 6's all-grasps protocol). The grasp is computed from the
-    estimate only and executed by `run_trial` (same seed, so the same object placement). No ground
-    truth enters the decision or the grasp; the record keeps the estimate's errors for evaluation.
-
-    The exploration and the grasp run as two simulations in sequence (the arm starts the grasp from
-    the protocol's start configuration; the object, which the camera does not touch, is placed again).
-    """
-    from drake_grasp.grasps import plan_compliant_grasp
-    from drake_grasp.perception import compare, explore, ground_truth
-
-    wall_start = time.perf_counter()
-    variation = TrialVariation.draw(seed, scenario.protocol)
-    explored_scenario, explored_spec = apply_variation(scenario, spec, variation)
-    nominal = np.array([scenario.object.x, scenario.object.y, 0.0])
-    exploration = explore(explored_scenario, perception_config, explored_spec, look_at=nominal)
-    estimate = exploration.estimate
-    if not estimate.found:
-        record = TrialRecord(object=spec.name, method="compliant", grasp=grasp or "", seed=seed, success=False,
-                             failure=OBJECT_NOT_FOUND, variation=dataclasses.asdict(variation),
-                             wall_time=time.perf_counter() - wall_start, estimate=estimate.to_dict())
-        return record
-    chosen = GRASP_OF_SHAPE[estimate.best_shape]
-    executed = grasp or chosen
-    grasp_estimate = estimate.as_grasp_estimate()
-
-    def plan(X_WO, object_spec):  # the estimate only: X_WO and the spec are not looked at
-        return plan_compliant_grasp(executed, grasp_estimate)
-
-    record = run_trial(scenario, spec, plan, seed=seed, method="compliant", grasp=executed, replay_html=replay_html)
-    errors = compare(estimate, ground_truth(explored_spec, exploration.X_WO_start))
-    record.resemblances = dict(estimate.resemblances)
-    record.chosen_grasp = chosen
-    record.estimate_source = "camera"
-    record.estimate = {k: v for k, v in estimate.to_dict().items() if k not in ("evidence",)}
-    record.estimate_errors = {"centre": errors.centre, "depth": errors.depth, "axis_deg": errors.axis_deg,
-                              "extents": [float(e) for e in errors.extents], "shape_correct": errors.shape_correct}
-    record.sim_time += float(estimate.timings.get("sim_time", 0.0))
-    record.wall_time = time.perf_counter() - wall_start
-    return record
+    return run
 
 
 def _object_contacts(plant, plant_context, object_body, table_bodies: set) -> tuple[set, bool]:

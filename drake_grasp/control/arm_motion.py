@@ -24,6 +24,9 @@ class ReachError(RuntimeError):
     """The arm cannot put the palm at the requested pose."""
 
 
+UNREACHABLE = "arm could not reach"  # a trial's failure reason when a ReachError stops it
+
+
 @dataclasses.dataclass
 class ArmKinematics:
     """Inverse kinematics of the WAM for palm poses, on the station's plant.

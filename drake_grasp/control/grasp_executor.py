@@ -17,7 +17,7 @@ from pydrake.math import RigidTransform
 from pydrake.multibody.plant import ContactResults, MultibodyPlant
 from pydrake.geometry import SceneGraph
 from pydrake.multibody.tree import ModelInstanceIndex
-from pydrake.systems.framework import BasicVector, Context, LeafSystem, State
+from pydrake.systems.framework import BasicVector, Context, DiagramBuilder, LeafSystem, State
 
 from drake_grasp.control.arm_motion import ArmKinematics, JointPath
 from drake_grasp.grasps import GraspPlan
@@ -86,7 +86,8 @@ class _Progress:
         stopped_on_contact: the approach ended on touch, not at its target.
         approach_travel: how far the palm went along the approach, m.
         phase_times: start time of every phase entered, s.
-        outcome: why the sequence ended before grasping (e.g. the arm could not reach), or "".
+        outcome: why the sequence ended before grasping (a trial's failure reason), or "".
+        detail: more about the outcome (e.g. the pose the arm could not reach).
         decision: what the supervisor decided (see `supervisor.Decision`), or None.
     """
 
@@ -98,6 +99,7 @@ class _Progress:
     approach_travel: float = 0.0
     phase_times: dict = dataclasses.field(default_factory=dict)
     outcome: str = ""
+    detail: str = ""
     decision: object = None
 
 
@@ -272,9 +274,9 @@ class GraspExecutor(LeafSystem):
         """Phase.EXPLORE's update: a subclass that decides the grasp while running overrides it."""
         raise RuntimeError("GraspExecutor was built without a plan")
 
-    def _end(self, progress: _Progress, t: float, outcome: str) -> _Progress:
+    def _end(self, progress: _Progress, t: float, outcome: str, detail: str = "") -> _Progress:
         """Ends the sequence at time t without grasping, saying why; the arm holds still."""
-        return dataclasses.replace(self._enter(progress, Phase.DONE, t), outcome=outcome)
+        return dataclasses.replace(self._enter(progress, Phase.DONE, t), outcome=outcome, detail=detail)
 
     def _enter(self, progress: _Progress, phase: Phase, t: float) -> _Progress:
         """Switches to `phase` at time t, with the arm trajectory that phase follows."""
@@ -295,6 +297,18 @@ class GraspExecutor(LeafSystem):
                                        phase_times={**progress.phase_times, phase: t})
         return dataclasses.replace(progress, phase=phase, phase_start=t, trajectory=path.ToTrajectory(),
                                    phase_times={**progress.phase_times, phase: t})
+
+
+def ConnectGraspExecutor(builder: DiagramBuilder, station_system, executor: GraspExecutor, *, arm: bool = True
+                         ) -> None:
+    """Connects an executor in `builder` to the station's Diagram `station_system` (both added to it):
+    the arm's and the contacts' feedback in, the hand's commands out, and (with `arm`) the arm command."""
+    builder.Connect(station_system.GetOutputPort("wam.state"), executor.GetInputPort("wam_state"))
+    builder.Connect(station_system.GetOutputPort("contact_results"), executor.GetInputPort("contact_results"))
+    builder.Connect(executor.GetOutputPort("hand_command"), station_system.GetInputPort("hand.command"))
+    builder.Connect(executor.GetOutputPort("finger_preshape"), station_system.GetInputPort("hand.finger_preshape"))
+    if arm:
+        builder.Connect(executor.GetOutputPort("wam_desired_state"), station_system.GetInputPort("wam.desired_state"))
 
 
 def _hold(q: np.ndarray, t: float):

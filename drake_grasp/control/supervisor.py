@@ -1,0 +1,150 @@
+"""The task supervisor of the compliance-centric algorithm: explore → decide → approach → close → lift → hold.
+
+The paper's algorithm (Sec. 1 and 5) as one LeafSystem in one Diagram with the station and the visual
+primitives:
+
+    ExplorationSequencer ──phase──────────────┐
+    ObjectEstimator ──estimate────────────────┴─> CompliantGraspSupervisor ──arm_source──> PortSwitch
+    CameraTwistController ──wam.desired_state──────────────────────────────────────────┘    │
+    CompliantGraspSupervisor ──wam_desired_state──────────────────────────────────> PortSwitch ──> station
+    CompliantGraspSupervisor ──hand_command, finger_preshape──────────────────────────────────> station
+
+* **explore**: while the sequencer runs the primitives, the camera motion drives the arm (the switch
+  routes it to the station) and the hand is held open.
+* **decide**: when the exploration ends, the supervisor reads the estimate. The compliant grasp is the
+  one of the most resembling shape (`grasps.GRASP_OF_SHAPE`), unless the caller forced one (Fig. 6
+  executes all three). Its hand pose is computed from the estimate alone (`grasps.plan_compliant_grasp`):
+  no object model, no ground truth, no contact planning.
+* **approach, close, lift, hold**: the same sequence, controller and timings as every other method
+  (`GraspExecutor`), from where the exploration left the arm; the switch now routes the supervisor's
+  arm command.
+
+If the object was never seen, or the arm cannot reach the chosen grasp, the sequence ends (Phase.DONE)
+with that outcome instead of grasping.
+"""
+
+import dataclasses
+
+import numpy as np
+from pydrake.common.value import AbstractValue
+from pydrake.systems.framework import Context, DiagramBuilder, InputPortIndex
+from pydrake.systems.primitives import PortSwitch
+
+from drake_grasp.control.arm_motion import UNREACHABLE, ReachError
+from drake_grasp.control.grasp_executor import ConnectGraspExecutor, ExecutionTimes, GraspExecutor, _Progress
+from drake_grasp.grasps import GRASP_OF_SHAPE, GraspPlan, GraspType, plan_compliant_grasp
+from drake_grasp.primitives.estimate import OBJECT_NOT_FOUND, ObjectEstimate
+from drake_grasp.primitives.sequencer import phase_value
+
+
+@dataclasses.dataclass(frozen=True)
+class Decision:
+    """What the supervisor decided when the exploration ended.
+
+    Attributes:
+        time: when, s.
+        estimate: the primitives' estimate it decided on.
+        chosen: the grasp of the most resembling shape ("" if the object was not found).
+        executed: the grasp executed: `chosen`, or the one the caller forced.
+        plan: the executed grasp's plan (None if the object was not found).
+    """
+
+    time: float
+    estimate: ObjectEstimate
+    chosen: str
+    executed: str
+    plan: GraspPlan | None
+
+
+class CompliantGraspSupervisor(GraspExecutor):
+    """Explores, decides the compliant grasp from the estimate, and executes it (module docstring).
+
+    Input ports (besides GraspExecutor's `wam_state` and `contact_results`):
+        exploration_phase (1): the ExplorationSequencer's phase.
+        object_estimate: the ObjectEstimator's estimate (abstract).
+    Output ports (besides GraspExecutor's):
+        arm_source: the InputPortIndex of the arm switch's port that drives the WAM: the camera
+            motion while exploring (and after a sequence that ended without a grasp), the
+            supervisor's own `wam_desired_state` from the decision on.
+    """
+
+    def __init__(self, plant, scene_graph, wam, hand_bodies: list, q_start: np.ndarray, times: ExecutionTimes,
+                 arm_sources: tuple[InputPortIndex, InputPortIndex], forced_grasp: str | None = None):
+        """
+        Args:
+            plant, scene_graph, wam, hand_bodies, times: as GraspExecutor's.
+            q_start: the arm's joint angles at time 0 (the exploration's start), rad.
+            arm_sources: the arm switch's input port indices of (the camera motion, this system).
+            forced_grasp: execute this grasp instead of the most resembling shape's (Fig. 6).
+        """
+        if forced_grasp is not None:
+            forced_grasp = GraspType.parse(forced_grasp).value
+        self._forced_grasp = forced_grasp
+        self._arm_sources = arm_sources
+        super().__init__(plant, scene_graph, wam, hand_bodies, None, q_start, times)
+        self._phase_port = self.DeclareVectorInputPort("exploration_phase", 1)
+        self._estimate_port = self.DeclareAbstractInputPort(
+            "object_estimate", AbstractValue.Make(ObjectEstimate(status=OBJECT_NOT_FOUND)))
+        self.DeclareAbstractOutputPort("arm_source", lambda: AbstractValue.Make(arm_sources[0]), self._CalcArmSource,
+                                       {self.abstract_state_ticket(self._progress_index)})
+
+    def decision(self, context: Context) -> Decision | None:
+        """The decision, once made (None while exploring)."""
+        return self.progress(context).decision
+
+    def _CalcArmSource(self, context: Context, output: AbstractValue) -> None:
+        grasping = self.progress(context).motion is not None
+        output.set_value(self._arm_sources[1] if grasping else self._arm_sources[0])
+
+    def _Explore(self, context: Context, progress: _Progress) -> _Progress:
+        if not phase_value(self._phase_port.Eval(context)[0]).finished:
+            return progress
+        t = context.get_time()
+        estimate: ObjectEstimate = self._estimate_port.Eval(context)
+        if not estimate.found:
+            decision = Decision(t, estimate, "", self._forced_grasp or "", None)
+            return dataclasses.replace(self._end(progress, t, OBJECT_NOT_FOUND), decision=decision)
+        chosen = GRASP_OF_SHAPE[estimate.best_shape]
+        executed = self._forced_grasp or chosen
+        plan = plan_compliant_grasp(executed, estimate.as_grasp_estimate())
+        decision = Decision(t, estimate, chosen, executed, plan)
+        q_now = np.asarray(self.GetInputPort("wam_state").Eval(context), float)[:7]
+        try:
+            started = self._start_grasp(progress, plan, q_now, t)
+        except ReachError as e:
+            return dataclasses.replace(self._end(progress, t, UNREACHABLE, str(e)), decision=decision)
+        return dataclasses.replace(started, decision=decision)
+
+
+def AddCompliantGraspSupervisor(builder: DiagramBuilder, station, station_system, primitives, sequencer,
+                                q_start: np.ndarray, times: ExecutionTimes, forced_grasp: str | None = None
+                                ) -> CompliantGraspSupervisor:
+    """Adds the supervisor and the arm switch, and connects them to the station, the primitives'
+    estimator, the sequencer and the camera motion controller.
+
+    Args:
+        builder: holds `station_system`, and the primitives added by
+            `perception.AddVisualPrimitives(..., connect_arm=False)` and `AddExplorationSequencer`.
+        station: the station (its plant, scene graph, arm and hand).
+        station_system: the station's Diagram in `builder`.
+        primitives: `perception.VisualPrimitives`.
+        sequencer: the ExplorationSequencer.
+        q_start: the arm's joint angles at time 0, rad.
+        times: the grasp sequence's timings (the scenario's protocol.execution).
+        forced_grasp: execute this grasp instead of the chosen one.
+    """
+    switch = builder.AddNamedSystem("arm_command_switch", PortSwitch(14))
+    camera_port = switch.DeclareInputPort("camera_motion")
+    grasp_port = switch.DeclareInputPort("grasp")
+    plant = station.plant
+    supervisor = builder.AddNamedSystem("supervisor", CompliantGraspSupervisor(
+        plant, station.scene_graph, station.wam, plant.GetBodyIndices(station.hand), q_start, times,
+        (camera_port.get_index(), grasp_port.get_index()), forced_grasp))
+    builder.Connect(primitives.camera_motion.GetOutputPort("wam.desired_state"), camera_port)
+    builder.Connect(supervisor.GetOutputPort("wam_desired_state"), grasp_port)
+    builder.Connect(supervisor.GetOutputPort("arm_source"), switch.get_port_selector_input_port())
+    builder.Connect(switch.get_output_port(), station_system.GetInputPort("wam.desired_state"))
+    builder.Connect(sequencer.GetOutputPort("phase"), supervisor.GetInputPort("exploration_phase"))
+    builder.Connect(primitives.estimator.GetOutputPort("estimate"), supervisor.GetInputPort("object_estimate"))
+    ConnectGraspExecutor(builder, station_system, supervisor, arm=False)
+    return supervisor

@@ -1,0 +1,111 @@
+"""The compliant-grasp supervisor: the decision as a single LeafSystem on fixed inputs, and the whole
+algorithm (explore, decide, grasp) in one Diagram in real simulation."""
+
+import json
+
+import numpy as np
+import pytest
+from pydrake.multibody.plant import ContactResults
+from pydrake.systems.analysis import Simulator
+from pydrake.systems.framework import InputPortIndex
+
+from drake_grasp import cli
+from drake_grasp.control.arm_motion import UNREACHABLE
+from drake_grasp.control.grasp_executor import Phase
+from drake_grasp.control.supervisor import CompliantGraspSupervisor
+from drake_grasp.objects import paper_object
+from drake_grasp.primitives.estimate import OBJECT_NOT_FOUND, ObjectEstimate
+from drake_grasp.primitives.sequencer import Phase as ExplorationPhase
+from drake_grasp.station import MakeStation, load_scenario
+from drake_grasp.trial import run_compliant_trial
+
+CAMERA, GRASP = InputPortIndex(1), InputPortIndex(2)
+
+
+def _ball_estimate(centre=(0.55, 0.0, 0.10), resemblances=(0.9, 0.1, 0.0)) -> ObjectEstimate:
+    return ObjectEstimate(status="ok", centre=np.array(centre), depth=0.35, camera_position=np.array([0.55, 0, 0.45]),
+                          axes=np.eye(3), extents=np.array([0.2, 0.2, 0.2]),
+                          resemblances=dict(zip(("sphere", "cylinder", "box"), resemblances)))
+
+
+def _decide(estimate: ObjectEstimate, exploration_phase: ExplorationPhase, forced_grasp=None, until=0.05):
+    """Runs the supervisor alone on fixed inputs for `until` seconds; returns it and its context."""
+    scenario = load_scenario()
+    station = MakeStation(scenario, paper_object("soccer_ball"), camera=False)
+    plant = station.plant
+    q_start = np.asarray(scenario.protocol.start_configuration, float)
+    supervisor = CompliantGraspSupervisor(plant, station.scene_graph, station.wam, plant.GetBodyIndices(station.hand),
+                                          q_start, scenario.protocol.execution, (CAMERA, GRASP), forced_grasp)
+    context = supervisor.CreateDefaultContext()
+    supervisor.GetInputPort("wam_state").FixValue(context, np.concatenate([q_start, np.zeros(7)]))
+    supervisor.GetInputPort("contact_results").FixValue(context, ContactResults())
+    supervisor.GetInputPort("exploration_phase").FixValue(context, [float(exploration_phase)])
+    supervisor.GetInputPort("object_estimate").FixValue(context, estimate)
+    Simulator(supervisor, context).AdvanceTo(until)
+    return supervisor, context
+
+
+def test_while_exploring_the_camera_drives_the_arm_and_the_hand_stays_open():
+    supervisor, context = _decide(_ball_estimate(), ExplorationPhase.RESEMBLANCE)
+    assert supervisor.phase(context) == Phase.EXPLORE and supervisor.decision(context) is None
+    assert supervisor.GetOutputPort("arm_source").Eval(context) == CAMERA
+    spread, action = supervisor.GetOutputPort("hand_command").Eval(context)
+    assert spread == 0.0 and action == 0.0  # HandAction.OPEN
+
+
+def test_the_decision_is_the_grasp_of_the_most_resembling_shape():
+    supervisor, context = _decide(_ball_estimate(), ExplorationPhase.DONE)
+    decision = supervisor.decision(context)
+    assert decision.chosen == decision.executed == "spherical"
+    assert supervisor.phase(context) == Phase.MOVE
+    assert supervisor.GetOutputPort("arm_source").Eval(context) == GRASP
+    # The plan comes from the estimate alone: the palm approaches the estimated centre from above.
+    np.testing.assert_allclose(decision.plan.X_WP_target.translation()[:2], [0.55, 0.0], atol=1e-9)
+    box, context = _decide(_ball_estimate(resemblances=(0.1, 0.3, 0.6)), ExplorationPhase.DONE)
+    assert box.decision(context).chosen == "box"
+
+
+def test_a_forced_grasp_is_executed_and_the_choice_still_recorded():
+    supervisor, context = _decide(_ball_estimate(), ExplorationPhase.DONE, forced_grasp="cylindrical")
+    decision = supervisor.decision(context)
+    assert decision.chosen == "spherical" and decision.executed == "cylindrical"
+    with pytest.raises(ValueError, match="unknown grasp"):
+        _decide(_ball_estimate(), ExplorationPhase.DONE, forced_grasp="pinch")
+
+
+def test_no_object_or_no_reach_ends_the_sequence_with_the_reason():
+    supervisor, context = _decide(ObjectEstimate(status=OBJECT_NOT_FOUND), ExplorationPhase.NOT_FOUND)
+    assert supervisor.phase(context) == Phase.DONE and supervisor.progress(context).outcome == OBJECT_NOT_FOUND
+    assert supervisor.GetOutputPort("arm_source").Eval(context) == CAMERA
+    far, context = _decide(_ball_estimate(centre=(3.0, 0.0, 0.1)), ExplorationPhase.DONE)
+    assert far.phase(context) == Phase.DONE and far.progress(context).outcome == UNREACHABLE
+    assert far.decision(context).executed == "spherical"
+
+
+@pytest.fixture(scope="module")
+def short_scenario():
+    scenario = load_scenario()
+    scenario.protocol.execution.hold_time = 0.5
+    return scenario
+
+
+def test_the_whole_algorithm_grasps_the_soccer_ball_from_the_camera_alone(short_scenario):
+    record = run_compliant_trial(short_scenario, paper_object("soccer_ball"), seed=1)
+    assert record.success, record.summary()
+    assert record.estimate_source == "camera" and record.chosen_grasp == record.grasp == "spherical"
+    assert record.resemblances["sphere"] > 0.5
+    # The decision came when the exploration ended, in the same simulation as the grasp.
+    assert 12.0 < record.estimate["decided_at"] < 13.0 < record.sim_time
+    assert record.estimate_errors["centre"] < 0.01 and record.estimate_errors["shape_correct"]
+
+
+@pytest.mark.slow
+def test_the_cli_runs_a_forced_grasp_and_writes_its_record(tmp_path, capsys):
+    scenario_file = tmp_path / "short.yaml"
+    scenario_file.write_text("default:\n  protocol:\n    execution:\n      hold_time: 0.5\n")
+    assert cli.main(["trial", "--object", "spectacle_case", "--method", "compliant", "--grasp", "cylindrical",
+                     "--seed", "3", "--json", "--scenario", str(scenario_file), "--out", str(tmp_path)]) == 0
+    record = json.loads(capsys.readouterr().out)
+    assert record["grasp"] == "cylindrical" and record["chosen_grasp"] == "box"
+    assert record["estimate_source"] == "camera" and record["estimate"]["status"] == "ok"
+    assert (tmp_path / "trial_spectacle_case_cylindrical_3.json").exists()
