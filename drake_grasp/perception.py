@@ -196,10 +196,12 @@ def AddVisualPrimitives(builder: DiagramBuilder, station: Station, station_syste
 
 def AddExplorationSequencer(builder: DiagramBuilder, primitives: VisualPrimitives, config: PerceptionConfig
                             ) -> ExplorationSequencer:
-    """Adds the phase machine and connects its commands to the primitives and its phase to the estimator."""
+    """Adds the phase machine and connects its commands to the primitives, its phase to the estimator,
+    and stops the camera when the exploration is over."""
     sequencer = builder.AddNamedSystem("exploration_sequencer", ExplorationSequencer(config.period, config.sequencer))
     builder.Connect(primitives.camera.GetOutputPort("camera_sample"), sequencer.GetInputPort("camera_sample"))
     builder.Connect(sequencer.GetOutputPort("phase"), primitives.estimator.GetInputPort("phase"))
+    builder.Connect(sequencer.GetOutputPort("camera_active"), primitives.camera.GetInputPort("active"))
     builder.Connect(sequencer.GetOutputPort("depth_command"), primitives.depth.GetInputPort("command"))
     builder.Connect(sequencer.GetOutputPort("axis_command"), primitives.axis.GetInputPort("command"))
     for shape in SHAPES:

@@ -105,6 +105,10 @@ def test_silhouette_camera_measures_the_labelled_blob():
     image.mutable_data[:] = 3
     camera.GetInputPort("label_image").FixValue(context, image)
     assert not CameraSample.from_vector(camera.EvalUniquePeriodicDiscreteUpdate(context).get_vector(0).get_value()).visible
+    # Stopped (`active` 0), it takes no image and holds its last sample.
+    camera.GetInputPort("active").FixValue(context, [0.0])
+    held = camera.EvalUniquePeriodicDiscreteUpdate(context).get_vector(0).get_value()
+    np.testing.assert_array_equal(held, context.get_discrete_state_vector().get_value())
 
 
 def test_silhouette_camera_with_colour_segmentation_takes_the_colour_image():
@@ -313,3 +317,18 @@ def test_camera_twist_controller_moves_the_camera_as_asked(station):
     moved = X_WC1.translation() - X_WC0.translation()
     assert np.linalg.norm(moved) == pytest.approx(0.05, abs=0.005)
     assert np.all(np.abs(state[7:]) <= controller.params.joint_velocity_limit + 1e-9)
+
+
+def test_the_sequencer_stops_the_camera_when_the_exploration_is_over():
+    sequencer = ExplorationSequencer(0.05, SequencerParams(0.1, 0.1, 0.1))
+    context = sequencer.CreateDefaultContext()
+    sample = np.zeros(25)
+    sample[1] = 1.0  # the object is visible
+    sequencer.GetInputPort("camera_sample").FixValue(context, sample)
+    simulator = Simulator(sequencer, context)
+    assert sequencer.GetOutputPort("camera_active").Eval(context)[0] == 1.0
+    simulator.AdvanceTo(0.2)
+    assert sequencer.GetOutputPort("camera_active").Eval(context)[0] == 1.0
+    simulator.AdvanceTo(0.4)
+    assert sequencer.state(context).phase == Phase.DONE
+    assert sequencer.GetOutputPort("camera_active").Eval(context)[0] == 0.0

@@ -52,6 +52,8 @@ class SilhouetteCamera(LeafSystem):
     Input ports:
         label_image (ImageLabel16I) — or color_image (ImageRgba8U) with colour segmentation.
         X_WC (RigidTransform): the camera's pose, as the RgbdSensor reports it.
+        active (1, optional): 0 stops sampling (no image is rendered; the last sample is held), e.g.
+            once the exploration is over and the arm grasps; unconnected, the camera always samples.
     Output ports:
         camera_sample: `CameraSample.to_vector()` of the latest image (time, silhouette, X_WC).
     """
@@ -68,6 +70,7 @@ class SilhouetteCamera(LeafSystem):
         else:
             self._image_port = self.DeclareAbstractInputPort("color_image", AbstractValue.Make(ImageRgba8U()))
         self._pose_port = self.DeclareAbstractInputPort("X_WC", AbstractValue.Make(RigidTransform()))
+        self._active_port = self.DeclareVectorInputPort("active", 1)
         self._state = self.DeclareDiscreteState(CameraSample.empty().to_vector())
         self.DeclareStateOutputPort("camera_sample", self._state)
         self.DeclarePeriodicDiscreteUpdateEvent(period, 0.0, self._Sample)
@@ -83,6 +86,8 @@ class SilhouetteCamera(LeafSystem):
                                largest_component_only=s.largest_component_only)
 
     def _Sample(self, context: Context, discrete_state) -> None:
+        if self._active_port.HasValue(context) and self._active_port.Eval(context)[0] < 0.5:
+            return  # the discrete state (the last sample) is left as it is
         image = self._image_port.Eval(context).data
         X_WC = self._pose_port.Eval(context)
         self.frames += 1

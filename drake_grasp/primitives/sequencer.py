@@ -84,6 +84,7 @@ class ExplorationSequencer(LeafSystem):
     Output ports:
         depth_command, axis_command, resemblance_command (1 each): PrimitiveCommand values.
         phase (1): the Phase value.
+        camera_active (1): 1 until the exploration is finished, then 0 (for the camera's `active`).
     """
 
     def __init__(self, period: float, params: SequencerParams | None = None):
@@ -97,6 +98,8 @@ class ExplorationSequencer(LeafSystem):
                 0, float(_COMMANDS[self.state(context).phase][i])), {self.abstract_state_ticket(self._state)})
         self.DeclareVectorOutputPort("phase", 1, lambda context, output: output.SetAtIndex(
             0, float(self.state(context).phase)), {self.abstract_state_ticket(self._state)})
+        self.DeclareVectorOutputPort("camera_active", 1, lambda context, output: output.SetAtIndex(
+            0, 0.0 if self.state(context).phase.finished else 1.0), {self.abstract_state_ticket(self._state)})
         self.DeclarePeriodicUnrestrictedUpdateEvent(period, 0.0, self._Advance)
 
     def state(self, context: Context) -> SequencerState:
