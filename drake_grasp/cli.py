@@ -52,7 +52,7 @@ def _parser() -> argparse.ArgumentParser:
         "eps metric. Writes fig4.csv (one row per grasp), fig4.png and fig4.svg; resumable.",
     )
     fig4.add_argument("--quick", action="store_true", help="9 sizes x 7 errors instead of 27 x 21")
-    fig4.add_argument("--workers", type=int, help="worker processes (default: all cores)")
+    _executor_args(fig4)
     _common(fig4, scenario=False)
     fig4.set_defaults(run=_run_fig4, out_default="out/fig4")
 
@@ -85,7 +85,7 @@ def _parser() -> argparse.ArgumentParser:
     )
     fig6.add_argument("--quick", action="store_true", help="4 objects x 3 grasps x 2 trials")
     fig6.add_argument("--trials", type=int, help="trials per object and grasp (default 10)")
-    fig6.add_argument("--workers", type=int, help="worker processes (default: all cores)")
+    _executor_args(fig6)
     fig6.add_argument("--method", choices=["compliant", "oracle"], default="compliant",
                       help="compliant: camera estimates (the paper's algorithm); oracle: ground truth")
     _common(fig6)
@@ -101,7 +101,7 @@ def _parser() -> argparse.ArgumentParser:
     )
     fig7.add_argument("--quick", action="store_true", help="2 objects, 2 trials per grasp")
     fig7.add_argument("--trials", type=int, help="executions of each planned grasp (default 10)")
-    fig7.add_argument("--workers", type=int, help="worker processes (default: all cores)")
+    _executor_args(fig7)
     fig7.add_argument("--steps", type=int, default=70_000,
                       help="planner steps, GraspIt!'s counter (default 70000 = 40000 annealing iterations)")
     fig7.add_argument("--energy", choices=["contact", "contact-quality"], default="contact-quality",
@@ -121,7 +121,7 @@ def _parser() -> argparse.ArgumentParser:
         "of the paper, its number, ours, and whether ours agrees. --quick takes a few minutes on 2 cores.",
     )
     reproduce.add_argument("--quick", action="store_true", help="few sizes, objects and trials")
-    reproduce.add_argument("--workers", type=int, help="worker processes (default: all cores)")
+    _executor_args(reproduce)
     reproduce.add_argument("--energy", choices=["contact", "contact-quality"], default="contact-quality",
                            help="the Eigengrasp planner's energy for Fig. 7")
     reproduce.add_argument("--seed", type=int, default=0, help="first trial seed (default 0)")
@@ -197,6 +197,17 @@ def _common(p: argparse.ArgumentParser, scenario: bool = True) -> None:
         p.add_argument("--scenario-name", default="default", help="scenario in that file (default: default)")
 
 
+def _executor_args(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--workers", type=int,
+                   help="worker processes, or the CPUs of the local Ray instance (default: all cores)")
+    p.add_argument("--executor", default="local", metavar="local|ray",
+                   help="where trials run: local processes (default) or Ray tasks (pip install -e '.[ray]'); "
+                   "the results are the same")
+    p.add_argument("--ray-address", metavar="ADDR",
+                   help="join this Ray cluster (auto, HOST:PORT or ray://HOST:10001) instead of starting a "
+                   "local Ray instance with --workers CPUs; needs --executor ray")
+
+
 def _load_scenario(args):
     from drake_grasp.station import DEFAULT_SCENARIO_FILE, load_scenario
 
@@ -251,11 +262,12 @@ def _run_demo(args) -> int:
 def _run_fig4(args) -> int:
     from drake_grasp.experiments import fig4
 
-    _check_sweep_args(args)
+    executor = _check_sweep_args(args)
     config = fig4.Fig4Config.quick() if args.quick else fig4.Fig4Config.full()
     out = pathlib.Path(args.out or args.out_default)
     start = time.perf_counter()
-    rows = fig4.run_fig4(config, out, workers=args.workers)
+    with executor:
+        rows = fig4.run_fig4(config, out, executor=executor)
     summaries = fig4.summarise(rows)
     figures = fig4.plot(summaries, out)
     lines = fig4.summary_lines(summaries, rows)
@@ -340,12 +352,25 @@ def _run_plan_eigengrasp(args) -> int:
     return 0
 
 
-def _check_sweep_args(args) -> None:
+def _check_sweep_args(args):
+    """Rejects bad sweep arguments before any work starts; returns the executor the sweep runs on
+    (a context manager: Ray, if started, is shut down on leaving it)."""
+    from drake_grasp.experiments.executors import EXECUTORS, make_executor
+
     _check_seed(args.seed)
     if args.workers is not None and args.workers < 1:
         raise UsageError(f"--workers must be >= 1, got {args.workers}")
     if getattr(args, "trials", None) is not None and args.trials < 1:
         raise UsageError(f"--trials must be >= 1, got {args.trials}")
+    if args.executor not in EXECUTORS:
+        raise UsageError(f"unknown --executor {args.executor!r} (choose from {', '.join(EXECUTORS)})")
+    if args.ray_address is not None and args.executor != "ray":
+        raise UsageError("--ray-address needs --executor ray")
+    if args.ray_address is not None and args.workers is not None:
+        raise UsageError("--workers does not apply with --ray-address (the cluster's CPUs decide)")
+    if args.ray_address is not None and not args.ray_address.strip():
+        raise UsageError("--ray-address is empty")
+    return make_executor(args.executor, args.workers, args.ray_address)
 
 
 def _scenario_args(args) -> tuple[str, str]:
@@ -357,14 +382,16 @@ def _run_fig6(args) -> int:
     from drake_grasp.experiments import fig6
     from drake_grasp.objects import PAPER_OBJECTS
 
-    _check_sweep_args(args)
+    executor = _check_sweep_args(args)
     scenario_file, scenario_name = _scenario_args(args)
     objects = fig6.QUICK_OBJECTS if args.quick else PAPER_OBJECTS
     trials = args.trials or (2 if args.quick else 10)
     config = fig6.Fig6Config(objects=tuple(objects), trials=trials, seed=args.seed, method=args.method)
     out = pathlib.Path(args.out or args.out_default)
     start = time.perf_counter()
-    _, figures, lines, count = fig6.run_sweep(config, out, args.workers, scenario_file, scenario_name)
+    with executor:
+        _, figures, lines, count = fig6.run_sweep(config, out, scenario_file=scenario_file,
+                                                  scenario_name=scenario_name, executor=executor)
     wall = time.perf_counter() - start
     if args.json:
         print(json.dumps({"csv": str(out / "fig6.csv"), "figures": [str(p) for p in figures], "trials": count,
@@ -378,7 +405,7 @@ def _run_fig6(args) -> int:
 def _run_fig7(args) -> int:
     from drake_grasp.experiments import fig7
 
-    _check_sweep_args(args)
+    executor = _check_sweep_args(args)
     if args.steps is None or args.steps <= 30_000:
         raise UsageError(f"--steps must be > 30000 (GraspIt!'s step counter starts there), got {args.steps}")
     scenario_file, scenario_name = _scenario_args(args)
@@ -388,8 +415,10 @@ def _run_fig7(args) -> int:
                              compliant_method=args.compliant_method)
     out = pathlib.Path(args.out or args.out_default)
     start = time.perf_counter()
-    comparison, figures, lines = fig7.run_comparison(config, out, pathlib.Path(args.fig6), args.workers,
-                                                     scenario_file, scenario_name)
+    with executor:
+        comparison, figures, lines = fig7.run_comparison(config, out, pathlib.Path(args.fig6),
+                                                         scenario_file=scenario_file, scenario_name=scenario_name,
+                                                         executor=executor)
     wall = time.perf_counter() - start
     if args.json:
         print(json.dumps(_jsonable({"csv": str(out / "fig7.csv"), "figures": [str(p) for p in figures],
@@ -404,9 +433,10 @@ def _run_fig7(args) -> int:
 def _run_reproduce(args) -> int:
     from drake_grasp.experiments import reproduce
 
-    _check_sweep_args(args)
+    executor = _check_sweep_args(args)
     out = pathlib.Path(args.out or ("out/reproduce-quick" if args.quick else "out/reproduce"))
-    report, claims, wall = reproduce.run(out, args.quick, args.workers, args.seed, args.energy)
+    with executor:
+        report, claims, wall = reproduce.run(out, args.quick, seed=args.seed, energy=args.energy, executor=executor)
     if args.json:
         print(json.dumps({"report": str(report), "wall_time": wall,
                           "claims": [dataclasses.asdict(c) for c in claims]}))

@@ -40,3 +40,21 @@ def test_fig7_claims_and_report(tmp_path):
     text = path.read_text()
     assert "reused: fig6 24 rows" in text
     assert "1 of 2 claims agree" in text and "| Fig. 7: game box 100 % for both methods |" in text
+
+
+def test_report_quotes_the_scaling_benchmark_or_says_how_to_run_it(tmp_path):
+    missing = "\n".join(reproduce.scaling_lines(tmp_path / "scaling.json"))
+    assert "## Scaling" in missing and "scripts/bench_scaling.py" in missing
+    runs = [{"executor": "local", "workers": 1, "trials_per_second": 0.25},
+            {"executor": "local", "workers": 2, "trials_per_second": 0.45},
+            {"executor": "ray", "workers": 2, "trials_per_second": 0.40}]
+    (tmp_path / "scaling.json").write_text(json.dumps({
+        "date": "2026-01-01T10:00+00:00", "machine": "test CPU, 2 CPUs", "load_average_before": [0.1, 0.2, 0.3],
+        "workload": "8 oracle trials", "runs": runs, "identical_records": True}))
+    path = tmp_path / "report.md"
+    reproduce.write_report(path, [], 1.0, True, "contact", [], scaling_file=tmp_path / "scaling.json")
+    text = path.read_text()
+    assert "2026-01-01T10:00+00:00 (test CPU, 2 CPUs" in text
+    assert "| local | 2 | 0.450 | 1.80x |" in text and "| ray | 2 | 0.400 | 1.60x |" in text
+    (tmp_path / "scaling.json").write_text("{")
+    assert "could not be read" in "\n".join(reproduce.scaling_lines(tmp_path / "scaling.json"))

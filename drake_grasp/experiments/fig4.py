@@ -14,11 +14,9 @@ The sweep is resumable: each (shape, size) is one task, whose rows are appended 
 soon as it finishes; a rerun computes only what is missing.
 """
 
-import concurrent.futures
+import contextlib
 import dataclasses
 import math
-import multiprocessing
-import os
 import pathlib
 import sys
 import time
@@ -139,40 +137,34 @@ def run_task(shape: str, size: float, config: Fig4Config) -> list[dict]:
 
 
 def run_fig4(config: Fig4Config, out_dir: pathlib.Path, workers: int | None = None,
-             progress=sys.stderr) -> list[dict]:
-    """Runs (or resumes) the sweep into out_dir/fig4.csv; returns every row as read back."""
+             progress=sys.stderr, executor=None) -> list[dict]:
+    """Runs (or resumes) the sweep into out_dir/fig4.csv; returns every row as read back.
+
+    Tasks run on `executor` (`executors.make_executor`), or with none on a local executor of
+    `workers` processes (default: every core).
+    """
+    from drake_grasp.experiments.executors import LocalExecutor
     from drake_grasp.experiments.results import ResultsTable
 
     out_dir.mkdir(parents=True, exist_ok=True)
     table = ResultsTable(out_dir / "fig4.csv", FIELDS, KEY)
     tasks = [
-        (shape, size) for shape in SHAPES for size in config.sizes
+        (shape, size, config) for shape in SHAPES for size in config.sizes
         if not all((shape, size, axis, error) in table for axis in AXES for error in config.errors)
     ]
     total = len(SHAPES) * len(config.sizes)
     done = total - len(tasks)
     if done:
         print(f"fig4: resuming, {done}/{total} (shape, size) tasks already in {table.path}", file=progress)
-    workers = workers or os.cpu_count() or 1
+    executor = executor or LocalExecutor(workers)
     start = time.perf_counter()
-
-    def report(shape, size):
-        nonlocal done
-        done += 1
-        elapsed = time.perf_counter() - start
-        print(f"fig4: {done}/{total} tasks ({shape} {size * 100:.1f} cm) {elapsed:.0f} s", file=progress)
-
-    if workers <= 1:
-        for shape, size in tasks:
-            table.append(run_task(shape, size, config))
-            report(shape, size)
-    else:
-        context = multiprocessing.get_context("spawn")
-        with concurrent.futures.ProcessPoolExecutor(max_workers=workers, mp_context=context) as pool:
-            futures = {pool.submit(run_task, shape, size, config): (shape, size) for shape, size in tasks}
-            for future in concurrent.futures.as_completed(futures):
-                table.append(future.result())
-                report(*futures[future])
+    with contextlib.closing(executor.imap_unordered(run_task, tasks)) as results:
+        for index, rows in results:
+            table.append(rows)
+            done += 1
+            shape, size, _ = tasks[index]
+            print(f"fig4: {done}/{total} tasks ({shape} {size * 100:.1f} cm) {time.perf_counter() - start:.0f} s",
+                  file=progress)
     wanted = {(s, str(float(z)), a, str(float(e))) for s in SHAPES for z in config.sizes for a in AXES
               for e in config.errors}
     return [r for r in table.rows() if (r["shape"], r["size"], r["axis"], r["error"]) in wanted]

@@ -159,8 +159,9 @@ def plot(stats: dict[str, dict[str, GraspStats]], out_dir: pathlib.Path) -> list
 
 
 def run_sweep(config: Fig6Config, out_dir: pathlib.Path, workers: int | None = None, scenario_file: str = "",
-              scenario_name: str = "default") -> tuple[dict, list[pathlib.Path], list[str], int]:
-    """Runs (or resumes) the sweep into out_dir/fig6.csv, plots it and summarises it.
+              scenario_name: str = "default", executor=None) -> tuple[dict, list[pathlib.Path], list[str], int]:
+    """Runs (or resumes) the sweep into out_dir/fig6.csv, plots it and summarises it. Trials run on
+    `executor` (`executors.make_executor`), or with none on a local executor of `workers` processes.
 
     Returns (per-object per-grasp stats, figure paths, summary lines, number of trials).
     """
@@ -168,7 +169,7 @@ def run_sweep(config: Fig6Config, out_dir: pathlib.Path, workers: int | None = N
 
     out_dir.mkdir(parents=True, exist_ok=True)
     specs = trial_specs(config, scenario_file, scenario_name)
-    table = run_trials(specs, out_dir / "fig6.csv", workers=workers, label="fig6")
+    table = run_trials(specs, out_dir / "fig6.csv", workers=workers, label="fig6", executor=executor)
     wanted = {(s.object, s.method, s.grasp, str(s.seed)) for s in specs}
     rows = [r for r in table.rows() if (r["object"], r["method"], r["grasp"], r["seed"]) in wanted]
     stats = grasp_stats(rows, config.objects)

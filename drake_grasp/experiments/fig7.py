@@ -12,6 +12,7 @@ its *best* grasp's success (chosen in hindsight).
 Plans are stored as JSON (``plans/``) and trials in ``fig7.csv`` as they finish: rerunning resumes.
 """
 
+import contextlib
 import dataclasses
 import json
 import pathlib
@@ -67,30 +68,46 @@ def plan_path(out_dir: pathlib.Path, obj: str, config: Fig7Config) -> pathlib.Pa
     return out_dir / "plans" / f"{obj}_{config.energy}_{config.steps}_seed{config.seed}_table.json"
 
 
-def ensure_plan(out_dir: pathlib.Path, obj: str, config: Fig7Config, progress=sys.stderr,
-                scenario_file: str = "", scenario_name: str = "default") -> dict:
-    """The planner's result for an object (planned once, then read back from its JSON file), with
-    the grasps to execute under "executed" (the three best the arm can reach)."""
+def plan_object(obj: str, config: Fig7Config, scenario_file: str = "", scenario_name: str = "default"):
+    """Plans one object (a worker task: plain data in and out); returns (plan dict with the grasps to
+    execute under "executed": the three best the arm can reach, planning wall time in s)."""
     from baselines.eigengrasp.planner import plan_eigengrasp
     from drake_grasp.objects import resolve_object
 
-    path = plan_path(out_dir, obj, config)
-    if path.exists():
-        return json.loads(path.read_text())
     start = time.perf_counter()
     plan = plan_eigengrasp(resolve_object(obj), max_steps=config.steps, seed=config.seed,
                            energy_name=config.energy, table=True).to_dict()
     plan["executed"] = reachable_grasps(plan, obj, scenario_file, scenario_name)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_suffix(".tmp")
-    tmp.write_text(json.dumps(plan, indent=1))
-    tmp.replace(path)
-    eps = ", ".join(f"{g['epsilon']:.3f}" for g in plan["grasps"])
-    ranks = ", ".join(str(g["planner_rank"]) for g in plan["executed"])
-    print(f"fig7: planned {obj} ({config.energy}, {config.steps} steps) in {time.perf_counter() - start:.0f} s; "
-          f"eps of the top 3 after autograsp [{eps}]; executing ranks [{ranks}] of {len(plan['candidates'])} "
-          "(the best the arm can reach)", file=progress, flush=True)
-    return plan
+    return plan, time.perf_counter() - start
+
+
+def ensure_plans(out_dir: pathlib.Path, config: Fig7Config, executor, progress=sys.stderr,
+                 scenario_file: str = "", scenario_name: str = "default") -> dict[str, dict]:
+    """The planner's result for each object: read back from its JSON file, or planned on `executor`
+    (objects in parallel) and written as each plan arrives."""
+    plans = {}
+    todo = []
+    for obj in config.objects:
+        path = plan_path(out_dir, obj, config)
+        if path.exists():
+            plans[obj] = json.loads(path.read_text())
+        else:
+            todo.append((obj, config, scenario_file, scenario_name))
+    with contextlib.closing(executor.imap_unordered(plan_object, todo)) as results:
+        for index, (plan, seconds) in results:
+            obj = todo[index][0]
+            path = plan_path(out_dir, obj, config)
+            path.parent.mkdir(parents=True, exist_ok=True)
+            tmp = path.with_suffix(".tmp")
+            tmp.write_text(json.dumps(plan, indent=1))
+            tmp.replace(path)
+            plans[obj] = plan
+            eps = ", ".join(f"{g['epsilon']:.3f}" for g in plan["grasps"])
+            ranks = ", ".join(str(g["planner_rank"]) for g in plan["executed"])
+            print(f"fig7: planned {obj} ({config.energy}, {config.steps} steps) in {seconds:.0f} s; "
+                  f"eps of the top 3 after autograsp [{eps}]; executing ranks [{ranks}] of "
+                  f"{len(plan['candidates'])} (the best the arm can reach)", file=progress, flush=True)
+    return {obj: plans[obj] for obj in config.objects}
 
 
 def reachable_grasps(plan: dict, obj: str, scenario_file: str = "", scenario_name: str = "default",
@@ -225,20 +242,22 @@ def plot(rows: list[Comparison], out_dir: pathlib.Path, energy: str) -> list[pat
 
 
 def run_comparison(config: Fig7Config, out_dir: pathlib.Path, fig6_dir: pathlib.Path, workers: int | None = None,
-                   scenario_file: str = "", scenario_name: str = "default"):
+                   scenario_file: str = "", scenario_name: str = "default", executor=None):
     """Plans, executes (or resumes) the planned grasps, gathers the compliance-centric trials (Fig. 6's
-    where they exist, else run here), plots and summarises.
+    where they exist, else run here), plots and summarises. Plans and trials run on `executor`
+    (`executors.make_executor`), or with none on a local executor of `workers` processes.
 
     Returns (list of Comparison, figure paths, summary lines).
     """
+    from drake_grasp.experiments.executors import LocalExecutor
     from drake_grasp.experiments.results import ResultsTable
     from drake_grasp.experiments.runner import TRIAL_FIELDS, TRIAL_KEY, run_trials
 
     out_dir.mkdir(parents=True, exist_ok=True)
-    plans = {obj: ensure_plan(out_dir, obj, config, scenario_file=scenario_file, scenario_name=scenario_name)
-             for obj in config.objects}
+    executor = executor or LocalExecutor(workers)
+    plans = ensure_plans(out_dir, config, executor, scenario_file=scenario_file, scenario_name=scenario_name)
     table = run_trials(eigengrasp_specs(plans, config, scenario_file, scenario_name), out_dir / "fig7.csv",
-                       workers=workers, label="fig7")
+                       label="fig7", executor=executor)
     f6_config = fig6.Fig6Config(objects=config.objects, trials=config.trials, seed=config.seed,
                                 method=config.compliant_method)
     f6_specs = fig6.trial_specs(f6_config, scenario_file, scenario_name)
@@ -246,7 +265,7 @@ def run_comparison(config: Fig7Config, out_dir: pathlib.Path, fig6_dir: pathlib.
     reused = ResultsTable(fig6_csv, TRIAL_FIELDS, TRIAL_KEY).rows() if fig6_csv.exists() else []
     have = {(r["object"], r["method"], r["grasp"], r["seed"]) for r in reused}
     missing = [s for s in f6_specs if (s.object, s.method, s.grasp, str(s.seed)) not in have]
-    own = run_trials(missing, out_dir / "fig7_compliant.csv", workers=workers, label="fig7 compliant").rows()
+    own = run_trials(missing, out_dir / "fig7_compliant.csv", label="fig7 compliant", executor=executor).rows()
     wanted = {(s.object, s.method, s.grasp, str(s.seed)) for s in f6_specs}
     compliant_rows = [r for r in reused + own if (r["object"], r["method"], r["grasp"], r["seed"]) in wanted]
     source = (f"{len(compliant_rows) - len(missing)} trials reused from {fig6_csv}, {len(missing)} run here"

@@ -6,6 +6,7 @@ computed from the measured results with the rules stated beside each claim; noth
 """
 
 import dataclasses
+import json
 import pathlib
 import time
 
@@ -13,6 +14,8 @@ import numpy as np
 
 from drake_grasp.experiments import fig4, fig6, fig7
 
+# Written by scripts/bench_scaling.py; quoted in the report when present.
+SCALING_FILE = pathlib.Path(__file__).resolve().parents[2] / "docs" / "results" / "scaling.json"
 ANNULUS = ("banana", "apple", "bell_pepper", "sponge", "spectacle_case", "toy_bridge")
 
 
@@ -120,8 +123,34 @@ def fig7_claims(comparison: list) -> list[Claim]:
     return claims
 
 
+def scaling_lines(path: pathlib.Path = SCALING_FILE) -> list[str]:
+    """The report's "Scaling" section: the measured benchmark (scripts/bench_scaling.py) if its JSON
+    file exists, else how to measure it."""
+    how = ("`.venv/bin/python scripts/bench_scaling.py` runs the same trials with 1 and 2 local workers and "
+           "with Ray, and writes docs/results/scaling.md and scaling.json.")
+    lines = ["## Scaling", ""]
+    if not path.exists():
+        return lines + [f"Not measured yet: {how}", ""]
+    try:
+        data = json.loads(path.read_text())
+        base = data["runs"][0]["trials_per_second"]
+        rows = [f"| {r['executor']} | {r['workers']} | {r['trials_per_second']:.3f} | "
+                f"{r['trials_per_second'] / base:.2f}x |" for r in data["runs"]]
+        load = ", ".join(f"{v:.2f}" for v in data["load_average_before"])
+        lines += [f"Measured by scripts/bench_scaling.py on {data['date']} ({data['machine']}; load average "
+                  f"{load} before the run): {data['workload']}. Start-up (worker processes, a local Ray "
+                  "instance) is included.", "",
+                  "| executor | workers | trials/s | speedup |", "|---|---|---|---|", *rows, "",
+                  f"Records identical across executors: {'yes' if data['identical_records'] else 'NO'}. "
+                  f"To measure again: {how}", ""]
+    except (ValueError, KeyError, IndexError, TypeError, ZeroDivisionError) as e:
+        lines += [f"{path} could not be read ({type(e).__name__}: {e}). {how}", ""]
+    return lines
+
+
 def write_report(path: pathlib.Path, claims: list[Claim], wall_time: float, quick: bool, energy: str,
-                 figures: list[pathlib.Path], resumed: dict | None = None) -> None:
+                 figures: list[pathlib.Path], resumed: dict | None = None, executor: str = "local",
+                 scaling_file: pathlib.Path = SCALING_FILE) -> None:
     agree = sum(c.agrees == "yes" for c in claims)
     reuse = ""
     if resumed:
@@ -129,8 +158,8 @@ def write_report(path: pathlib.Path, claims: list[Claim], wall_time: float, quic
     lines = [
         "# drake-grasp: the paper's claims against this reproduction",
         "",
-        f"Run: {'quick' if quick else 'full'}; wall time {wall_time:.0f} s; Fig. 7 planner energy: {energy}. "
-        f"{agree} of {len(claims)} claims agree.{reuse}",
+        f"Run: {'quick' if quick else 'full'}; wall time {wall_time:.0f} s; executor: {executor}; Fig. 7 planner "
+        f"energy: {energy}. {agree} of {len(claims)} claims agree.{reuse}",
         "",
         "| claim | paper | ours | agrees | rule |",
         "|---|---|---|---|---|",
@@ -139,35 +168,40 @@ def write_report(path: pathlib.Path, claims: list[Claim], wall_time: float, quic
     lines += ["", "Figures: " + ", ".join(f"[{p.name}]({p.parent.name}/{p.name})" for p in figures), ""]
     if quick:
         lines += ["A quick run uses few sizes, objects and trials: its verdicts are indicative only.", ""]
+    lines += scaling_lines(scaling_file)
     tmp = path.with_suffix(".tmp")
     tmp.write_text("\n".join(lines))
     tmp.replace(path)
 
 
 def run(out_dir: pathlib.Path, quick: bool, workers: int | None = None, seed: int = 0,
-        energy: str = "contact-quality") -> tuple[pathlib.Path, list[Claim], float]:
-    """Runs (or resumes) Fig. 4, 6 and 7 under out_dir and writes out_dir/report.md."""
+        energy: str = "contact-quality", executor=None) -> tuple[pathlib.Path, list[Claim], float]:
+    """Runs (or resumes) Fig. 4, 6 and 7 under out_dir and writes out_dir/report.md. Everything runs on
+    `executor` (`executors.make_executor`), or with none on a local executor of `workers` processes."""
+    from drake_grasp.experiments.executors import LocalExecutor
     from drake_grasp.objects import PAPER_OBJECTS
 
+    executor = executor or LocalExecutor(workers)
     start = time.perf_counter()
     out_dir.mkdir(parents=True, exist_ok=True)
     resumed = {name: _rows_on_disk(out_dir / name / f"{name}.csv") for name in ("fig4", "fig6", "fig7")}
     config4 = fig4.Fig4Config.quick() if quick else fig4.Fig4Config.full()
-    rows4 = fig4.run_fig4(config4, out_dir / "fig4", workers=workers)
+    rows4 = fig4.run_fig4(config4, out_dir / "fig4", executor=executor)
     summaries4 = fig4.summarise(rows4)
     figures = list(fig4.plot(summaries4, out_dir / "fig4"))
     trials = 2 if quick else 10
     config6 = fig6.Fig6Config(objects=fig6.QUICK_OBJECTS if quick else PAPER_OBJECTS, trials=trials, seed=seed)
-    stats6, f6, _, _ = fig6.run_sweep(config6, out_dir / "fig6", workers)
+    stats6, f6, _, _ = fig6.run_sweep(config6, out_dir / "fig6", executor=executor)
     figures += f6
     config7 = fig7.Fig7Config(objects=fig7.QUICK_OBJECTS if quick else fig7.OBJECTS, trials=trials, seed=seed,
                               energy=energy)
-    comparison, f7, _ = fig7.run_comparison(config7, out_dir / "fig7", out_dir / "fig6", workers)
+    comparison, f7, _ = fig7.run_comparison(config7, out_dir / "fig7", out_dir / "fig6", executor=executor)
     figures += f7
     claims = fig4_claims(summaries4) + fig6_claims(stats6) + fig7_claims(comparison)
     wall = time.perf_counter() - start
     report = out_dir / "report.md"
-    write_report(report, claims, wall, quick, energy, figures, {k: f"{v} rows" for k, v in resumed.items() if v})
+    write_report(report, claims, wall, quick, energy, figures, {k: f"{v} rows" for k, v in resumed.items() if v},
+                 executor.describe())
     return report, claims, wall
 
 

@@ -1,4 +1,4 @@
-"""Runs many trials in a local process pool, writing each record as soon as it finishes.
+"""Runs many trials through an executor (local processes or Ray), writing each record as it finishes.
 
 A trial is described by plain data (a `TrialSpec`): the worker builds its own station and Diagram
 (Drake Diagrams and Contexts do not pickle), runs it, and returns the record as a plain dict. Records
@@ -6,16 +6,15 @@ go to a resumable CSV (`results.ResultsTable`) keyed by (object, method, grasp, 
 same sweep after an interruption computes only the missing trials.
 """
 
-import concurrent.futures
+import contextlib
 import dataclasses
 import json
 import math
-import multiprocessing
-import os
 import pathlib
 import sys
 import time
 
+from drake_grasp.experiments.executors import Executor, LocalExecutor
 from drake_grasp.experiments.results import ResultsTable
 
 TRIAL_FIELDS = [
@@ -106,38 +105,31 @@ def _finite(value):
 
 
 def run_trials(specs: list[TrialSpec], csv_path: pathlib.Path, workers: int | None = None,
-               progress=sys.stderr, label: str = "trials") -> ResultsTable:
-    """Runs the specs not yet in csv_path (resumable), `workers` at a time; returns the table."""
+               progress=sys.stderr, label: str = "trials", executor: Executor | None = None) -> ResultsTable:
+    """Runs the specs not yet in csv_path (resumable); returns the table.
+
+    Args:
+        specs: the sweep's trials.
+        csv_path: the results file; each record is appended as soon as its trial finishes.
+        workers: with no `executor`, a local executor of this many processes (default: every core).
+        progress: where a line per finished trial goes.
+        label: the sweep's name in those lines.
+        executor: where trials run (`executors.make_executor`); its results are the same wherever
+            they run.
+    """
     table = ResultsTable(csv_path, TRIAL_FIELDS, TRIAL_KEY)
     todo = [s for s in specs if (s.object, s.method, s.grasp, s.seed) not in table]
     total = len(specs)
     done = total - len(todo)
     if done:
         print(f"{label}: resuming, {done}/{total} trials already in {csv_path}", file=progress)
-    workers = max(1, min(workers or os.cpu_count() or 1, len(todo) or 1))
+    executor = executor or LocalExecutor(workers)
     start = time.perf_counter()
-    successes = 0
-
-    def report(row: dict):
-        nonlocal done, successes
-        done += 1
-        successes += row["success"] in (True, "1", 1)
-        elapsed = time.perf_counter() - start
-        verdict = "ok" if row["success"] in (True, "1", 1) else row["failure"]
-        print(f"{label}: {done}/{total} {row['object']} {row['method']}/{row['grasp']} seed {row['seed']}: "
-              f"{verdict} ({elapsed:.0f} s)", file=progress, flush=True)
-
-    if workers == 1:
-        for spec in todo:
-            row = run_one(spec)
+    with contextlib.closing(executor.imap_unordered(run_one, [(spec,) for spec in todo])) as results:
+        for _, row in results:
             table.append([row])
-            report(row)
-    else:
-        context = multiprocessing.get_context("spawn")
-        with concurrent.futures.ProcessPoolExecutor(max_workers=workers, mp_context=context) as pool:
-            futures = {pool.submit(run_one, spec): spec for spec in todo}
-            for future in concurrent.futures.as_completed(futures):
-                row = future.result()
-                table.append([row])
-                report(row)
+            done += 1
+            verdict = "ok" if row["success"] in (True, "1", 1) else row["failure"]
+            print(f"{label}: {done}/{total} {row['object']} {row['method']}/{row['grasp']} seed {row['seed']}: "
+                  f"{verdict} ({time.perf_counter() - start:.0f} s)", file=progress, flush=True)
     return table
