@@ -131,6 +131,7 @@ class GraspExecutor(LeafSystem):
         """
         super().__init__()
         self._inspector = scene_graph.model_inspector()
+        self._body_of_geometry = {}  # GeometryId -> body index, filled as contacts come
         self._times = times
         self._kinematics = ArmKinematics(plant, wam)
         self._hand_bodies = set(int(b) for b in hand_bodies)
@@ -240,7 +241,12 @@ class GraspExecutor(LeafSystem):
         return float(np.linalg.norm(total))
 
     def _body_of(self, geometry_id) -> int:
-        return int(self._plant.GetBodyFromFrameId(self._inspector.GetFrameId(geometry_id)).index())
+        """The index of the plant body that owns a geometry (looked up once per geometry)."""
+        body = self._body_of_geometry.get(geometry_id)
+        if body is None:
+            body = int(self._plant.GetBodyFromFrameId(self._inspector.GetFrameId(geometry_id)).index())
+            self._body_of_geometry[geometry_id] = body
+        return body
 
     def _Update(self, context: Context, state: State) -> None:
         progress: _Progress = dataclasses.replace(self.progress(context))
