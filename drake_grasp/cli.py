@@ -72,6 +72,14 @@ def _parser() -> argparse.ArgumentParser:
                        help="force this compliant grasp instead of the algorithm's choice")
     trial.add_argument("--oracle", action="store_true",
                        help="skip the camera: compute the grasp (--grasp) from the object's true pose and size")
+    planner = trial.add_argument_group(
+        "--method eigengrasp", "plan with the Eigengrasp planner (table loaded), execute its best grasp the "
+        "arm can reach, judge with the same success test (one trial of Fig. 7)")
+    planner.add_argument("--energy", metavar="contact|contact-quality",
+                         help="the planner's energy (default: contact-quality, as Fig. 7)")
+    planner.add_argument("--steps", metavar="N", help="the planner's step limit (default 70000, must be > 30000)")
+    planner.add_argument("--plan-seed", type=int, help="the planner's seed (default 0)")
+    planner.add_argument("--rank", type=int, help="execute the K-th best grasp the arm can reach (default 1)")
     _common(trial)
     trial.add_argument("--replay", metavar="FILE.html", help="write a Meshcat replay")
     trial.set_defaults(run=_run_trial)
@@ -293,9 +301,13 @@ def _run_trial(args) -> int:
     replay = _writable_file(args.replay, ".html") if args.replay else None
     scenario = _load_scenario(args)
     spec = resolve_object(args.object)
+    planner_options = {"--energy": args.energy, "--steps": args.steps, "--plan-seed": args.plan_seed,
+                       "--rank": args.rank}
     if args.method == "eigengrasp":
-        raise UsageError("planned grasps run through fig7 (or plan-eigengrasp, then the Python API); "
-                         "use --method compliant")
+        return _run_eigengrasp_trial(args, replay)
+    given = [name for name, value in planner_options.items() if value is not None]
+    if given:
+        raise UsageError(f"{', '.join(given)}: only with --method eigengrasp")
     if args.oracle:
         if args.grasp is None:
             raise UsageError("--oracle needs --grasp (the oracle does not choose)")
@@ -313,21 +325,53 @@ def _run_trial(args) -> int:
     return 0
 
 
-def _run_plan_eigengrasp(args) -> int:
+def _check_planner_args(steps: str, energy: str) -> int:
+    """The planner's step limit as an int; UsageError for a bad step limit or energy."""
     from baselines.eigengrasp.annealing import K0
     from baselines.eigengrasp.energy import ENERGIES
+
+    try:
+        steps = int(steps)
+    except ValueError:
+        raise UsageError(f"--steps must be an integer > {K0}, got {steps!r}") from None
+    if steps <= K0:
+        raise UsageError(f"--steps must be > {K0} (GraspIt!'s step counter starts at {K0}), got {steps}")
+    if energy not in ENERGIES:
+        raise UsageError(f"unknown --energy {energy!r} (choose from {', '.join(ENERGIES)})")
+    return steps
+
+
+def _run_eigengrasp_trial(args, replay: pathlib.Path | None) -> int:
+    from drake_grasp.experiments.fig7 import eigengrasp_trial
+
+    if args.grasp or args.oracle:
+        raise UsageError("--grasp and --oracle are for --method compliant (the planner chooses its own grasp)")
+    energy = args.energy or "contact-quality"
+    steps = _check_planner_args(args.steps or "70000", energy)
+    rank = 1 if args.rank is None else args.rank
+    if rank < 1:
+        raise UsageError(f"--rank must be >= 1, got {rank}")
+    plan_seed = 0 if args.plan_seed is None else args.plan_seed
+    _check_seed(plan_seed)
+    record, grasp = eigengrasp_trial(args.object, args.seed, energy=energy, steps=steps, plan_seed=plan_seed,
+                                     rank=rank, scenario_file=args.scenario or "", scenario_name=args.scenario_name,
+                                     replay_html=str(replay) if replay else None)
+    result = dataclasses.asdict(record)
+    result["planned_grasp"] = grasp
+    summary = record.summary()
+    if grasp is not None:
+        summary += f"; planner rank {grasp['planner_rank']}, eps {grasp['epsilon']:.3f}"
+    _emit(args, result, f"trial_{record.object}_eigengrasp_{rank}_{record.seed}.json", summary, replay)
+    return 0
+
+
+def _run_plan_eigengrasp(args) -> int:
+    from baselines.eigengrasp.annealing import K0
     from baselines.eigengrasp.planner import EigengraspPlanner
     from drake_grasp.objects import resolve_object
 
     _check_seed(args.seed)
-    try:
-        steps = int(args.steps)
-    except ValueError:
-        raise UsageError(f"--steps must be an integer > {K0}, got {args.steps!r}") from None
-    if steps <= K0:
-        raise UsageError(f"--steps must be > {K0} (GraspIt!'s step counter starts at {K0}), got {steps}")
-    if args.energy not in ENERGIES:
-        raise UsageError(f"unknown --energy {args.energy!r} (choose from {', '.join(ENERGIES)})")
+    steps = _check_planner_args(args.steps, args.energy)
     spec = resolve_object(args.object)
     plan = EigengraspPlanner(spec, args.energy, table=args.table).plan(steps, seed=args.seed)
     record = plan.to_dict()

@@ -96,3 +96,21 @@ def test_a_planned_grasp_runs_through_the_same_runner(short_scenario):
                        method="eigengrasp", grasp="planned")
     assert record.success, record.summary()
     assert not record.approach_stopped_on_contact
+
+
+def test_trial_cli_runs_the_eigengrasp_planner_through_the_same_runner(capsys, tmp_path):
+    # Plan (a short annealing, table loaded), execute the best grasp the arm can reach, judge.
+    scenario_file = tmp_path / "short.yaml"
+    scenario_file.write_text("default:\n  protocol:\n    execution:\n      hold_time: 0.5\n")
+    assert cli.main(["trial", "--object", "sponge", "--method", "eigengrasp", "--steps", "35000", "--seed", "1",
+                     "--json", "--scenario", str(scenario_file)]) == 0
+    record = json.loads(capsys.readouterr().out)
+    assert record["method"] == "eigengrasp" and record["grasp"] == "contact-quality/35000/seed0#1"
+    assert record["planned_grasp"]["planner_rank"] >= 1 and len(record["planned_grasp"]["X_OH"]) == 4
+    assert record["success"] == (record["failure"] == "")  # a verdict from the same success test
+    for bad, message in ((["--grasp", "box"], "--method compliant"), (["--rank", "0"], "--rank"),
+                         (["--energy", "joy"], "unknown --energy"), (["--steps", "10"], "--steps")):
+        assert cli.main(["trial", "--object", "sponge", "--method", "eigengrasp"] + bad) == 2
+        assert message in capsys.readouterr().err
+    assert cli.main(["trial", "--object", "sponge", "--rank", "2"]) == 2
+    assert "only with --method eigengrasp" in capsys.readouterr().err

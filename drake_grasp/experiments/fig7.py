@@ -147,6 +147,43 @@ def reachable_grasps(plan: dict, obj: str, scenario_file: str = "", scenario_nam
     return chosen
 
 
+def eigengrasp_trial(obj: str, seed: int, *, energy: str = "contact-quality", steps: int = 70_000,
+                     plan_seed: int = 0, rank: int = 1, scenario_file: str = "", scenario_name: str = "default",
+                     replay_html: str | None = None):
+    """One trial of the compliance-agnostic method, as Fig. 7 runs it: plan with the Eigengrasp planner
+    (table loaded), execute its `rank`-th best grasp that the WAM can reach, judge with the same
+    runner, seeds and success test as the compliant grasps.
+
+    Returns (TrialRecord, the executed grasp as the planner gave it, or None if the arm cannot reach
+    `rank` of the planner's grasps: then the record fails with UNREACHABLE). The record's grasp label
+    is the one Fig. 7 gives the same plan's grasp ("energy/steps/seedS#rank").
+    """
+    from pydrake.math import RigidTransform
+
+    from baselines.eigengrasp.planner import plan_eigengrasp
+    from drake_grasp.control.arm_motion import UNREACHABLE
+    from drake_grasp.grasps import planned_grasp
+    from drake_grasp.objects import resolve_object
+    from drake_grasp.station import DEFAULT_SCENARIO_FILE, load_scenario
+    from drake_grasp.trial import TrialRecord, run_trial
+
+    spec = resolve_object(obj)
+    scenario = load_scenario(scenario_file or DEFAULT_SCENARIO_FILE, scenario_name)
+    plan = plan_eigengrasp(spec, max_steps=steps, seed=plan_seed, energy_name=energy, table=True).to_dict()
+    reachable = reachable_grasps(plan, obj, scenario_file, scenario_name, count=rank)
+    label = f"{energy}/{steps}/seed{plan_seed}#{rank}"
+    if len(reachable) < rank:
+        return TrialRecord(object=spec.name, method="eigengrasp", grasp=label, seed=seed, success=False,
+                           failure=UNREACHABLE, detail=f"the arm can reach {len(reachable)} of the planner's "
+                           f"{len(plan['candidates'])} grasps, fewer than rank {rank}"), None
+    grasp = reachable[rank - 1]
+    X_OH = RigidTransform(np.asarray(grasp["X_OH"], float))
+    q = np.asarray(grasp["pregrasp_joint_angles"], float)
+    record = run_trial(scenario, spec, lambda X_WO, object_spec: planned_grasp(X_OH, q, X_WO), seed=seed,
+                       method="eigengrasp", grasp=label, replay_html=replay_html)
+    return record, grasp
+
+
 def eigengrasp_specs(plans: dict, config: Fig7Config, scenario_file="", scenario_name="default"):
     from drake_grasp.experiments.runner import TrialSpec
 
