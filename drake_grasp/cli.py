@@ -67,7 +67,7 @@ def _parser() -> argparse.ArgumentParser:
                        help="a catalogue object, a primitive (sphere:0.12, cube:0.08, cylinder:0.1x0.3) or a mesh file")
     trial.add_argument("--method", choices=["compliant", "eigengrasp"], default="compliant",
                        help="compliant (default): explore with the wrist camera, pick the grasp of the most "
-                       "resembling shape, execute it")
+                       "resembling shape, execute it, all in one simulation; eigengrasp: see below")
     trial.add_argument("--grasp", choices=["spherical", "cylindrical", "box"],
                        help="force this compliant grasp instead of the algorithm's choice")
     trial.add_argument("--oracle", action="store_true",
@@ -78,8 +78,9 @@ def _parser() -> argparse.ArgumentParser:
     planner.add_argument("--energy", metavar="contact|contact-quality",
                          help="the planner's energy (default: contact-quality, as Fig. 7)")
     planner.add_argument("--steps", metavar="N", help="the planner's step limit (default 70000, must be > 30000)")
-    planner.add_argument("--plan-seed", type=int, help="the planner's seed (default 0)")
-    planner.add_argument("--rank", type=int, help="execute the K-th best grasp the arm can reach (default 1)")
+    planner.add_argument("--plan-seed", type=int, metavar="S", help="the planner's seed (default 0)")
+    planner.add_argument("--rank", type=int, metavar="K",
+                         help="execute the K-th best grasp the arm can reach (default 1)")
     _common(trial)
     trial.add_argument("--replay", metavar="FILE.html", help="write a Meshcat replay")
     trial.set_defaults(run=_run_trial)
