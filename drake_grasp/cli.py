@@ -511,9 +511,20 @@ def _write_json_atomically(path: pathlib.Path, record: dict) -> None:
 
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the `drake-grasp` console script; returns the exit code."""
+    import warnings
+
+    from drake_grasp.objects import UnstablePoseWarning
+
     args = _parser().parse_args(argv)
+
+    def one_line(message, category, *rest, **kwargs):
+        print(f"drake-grasp {args.command}: warning: {message}", file=sys.stderr)
+
     try:
-        return args.run(args)
+        with warnings.catch_warnings():
+            warnings.simplefilter("once", UnstablePoseWarning)
+            warnings.showwarning = one_line
+            return args.run(args)
     except (UsageError, ValueError, FileNotFoundError) as e:
         # ObjectError and scenario errors are ValueErrors with one-line messages.
         message = str(e).strip().splitlines()[0] if str(e).strip() else type(e).__name__

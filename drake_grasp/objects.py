@@ -42,6 +42,7 @@ import os
 import re
 import shutil
 import tempfile
+import warnings
 from pathlib import Path
 from typing import Callable
 
@@ -89,6 +90,10 @@ SHAPE_KINDS = ("sphere", "ellipsoid", "box", "cylinder", "capsule", "convex")
 
 class ObjectError(ValueError):
     """A bad object name, primitive string or model file; the message is one line."""
+
+
+class UnstablePoseWarning(UserWarning):
+    """A mesh given with its z up would tip over on the table, so it is rested on a stable face."""
 
 
 # --- Data ---------------------------------------------------------------------------------------
@@ -933,6 +938,24 @@ def _lowest_resting_rotation(hull: trimesh.Trimesh, p_Ocm: np.ndarray) -> Rotati
     return RotationMatrix(AngleAxis(math.atan2(sin, cos), axis / sin))
 
 
+def _rests_stably_upright(hull: trimesh.Trimesh, p_Ocm: np.ndarray) -> bool:
+    """Whether the object rests stably with its frame's z up: on a downward hull face (not an edge
+    or a point) over which its centre of mass lies."""
+    down = np.array([0.0, 0.0, -1.0])
+    z_min = float(hull.vertices[:, 2].min())
+    bottom = (hull.face_normals @ down > 1.0 - 1e-6) & (np.abs(hull.triangles[:, :, 2] - z_min).max(axis=1) < 1e-6)
+    if not np.any(bottom):
+        return False
+    polygon = np.unique(np.round(hull.triangles[bottom].reshape(-1, 3)[:, :2], 9), axis=0)
+    try:
+        from scipy.spatial import ConvexHull
+
+        equations = ConvexHull(polygon).equations  # a·x + b ≤ 0 inside
+    except Exception:  # fewer than 3 distinct points, or collinear: an edge
+        return False
+    return bool(np.all(equations[:, :2] @ p_Ocm[:2] + equations[:, 2] <= 1e-9))
+
+
 def object_from_mesh(
     path: str | os.PathLike,
     mass: float | None = None,
@@ -941,7 +964,7 @@ def object_from_mesh(
     density: float = DEFAULT_DENSITY,
     scale: float = 1.0,
     max_pieces: int = DEFAULT_MAX_PIECES,
-    stable_pose: bool = False,
+    stable_pose: bool | None = None,
     closest_primitive: str | None = None,
     rgba=YELLOW_PAPER_RGBA,
     friction: float | None = None,
@@ -965,8 +988,9 @@ def object_from_mesh(
         max_pieces: Most convex pieces of a decomposition.
         stable_pose: If False, the object rests with the file's z up (R_TO = I) on its lowest
             point (which may not be a stable pose); if True, R_TO rests it on the hull face nearest
-            its centre of mass (its lowest, hence stable, resting pose). O's axes are the file's
-            either way.
+            its centre of mass (its lowest, hence stable, resting pose); if None (default), the
+            file's z up when the object rests stably that way, else the stable pose (as it would
+            fall), saying so with an `UnstablePoseWarning`. O's axes are the file's either way.
         closest_primitive: Ground truth for shape resemblance if known ('sphere', 'cylinder',
             'box'); default None.
         rgba: Visual colour.
@@ -993,6 +1017,11 @@ def object_from_mesh(
     centroid = np.asarray(mesh.center_mass, float)
     unit_inertia = np.asarray(mesh.moment_inertia, float) / float(mesh.mass)
     rpy_TO = (0.0, 0.0, 0.0)
+    if stable_pose is None and not _rests_stably_upright(mesh.convex_hull, centroid):
+        warnings.warn(f"{label}: with its z up the object would tip over (it rests on an edge or a point, "
+                      "or its centre of mass is not over its base); resting it on its most stable face",
+                      UnstablePoseWarning, stacklevel=2)
+        stable_pose = True
     if stable_pose:
         rpy_TO = tuple(RollPitchYaw(_lowest_resting_rotation(mesh.convex_hull, centroid)).vector())
     pieces = [ShapePiece("convex", (), mesh_path=p) for p in piece_paths]

@@ -320,6 +320,28 @@ def test_stable_pose_lays_a_tall_cylinder_down(tmp_path):
     _assert_rests(lying, *_drop_and_hold(lying, 0.01))
 
 
+def test_a_mesh_that_would_tip_over_is_rested_on_a_stable_face(tmp_path):
+    # A capsule given standing on its round end would fall over: by default it is laid down, saying so.
+    path = tmp_path / "capsule.stl"
+    trimesh.creation.capsule(height=0.12, radius=0.035).export(path)
+    with pytest.warns(objects.UnstablePoseWarning, match="capsule.stl: with its z up the object would tip over"):
+        lying = objects.object_from_mesh(path)
+    assert lying.rest_height < 0.04 and abs((lying.R_TO.matrix() @ np.array(lying.principal_axis))[2]) < 1e-6
+    assert objects.object_from_mesh(path, stable_pose=False).rest_height == pytest.approx(0.095, abs=1e-6)
+    # A box tilted in its file so that its centre of mass is off its lowest face tips over too.
+    tilted = trimesh.creation.box((0.02, 0.02, 0.2))
+    tilted.apply_transform(trimesh.transformations.rotation_matrix(math.radians(30), [1, 0, 0]))
+    tilted.export(tmp_path / "tilted.stl")
+    with pytest.warns(objects.UnstablePoseWarning):
+        objects.object_from_mesh(tmp_path / "tilted.stl")
+
+
+def test_a_mesh_that_rests_stably_keeps_its_orientation(tmp_path, recwarn):
+    trimesh.creation.cylinder(radius=0.03, height=0.2, sections=32).export(tmp_path / "can.stl")
+    assert objects.object_from_mesh(tmp_path / "can.stl").R_TO.IsExactlyIdentity()
+    assert not [w for w in recwarn if issubclass(w.category, objects.UnstablePoseWarning)]
+
+
 def test_inverted_mesh_is_flipped(tmp_path):
     mesh = trimesh.creation.box((0.1, 0.1, 0.1))
     mesh.invert()
@@ -403,3 +425,13 @@ def test_object_from_sdf(tmp_path):
     assert spec.pieces[0].kind == "box" and spec.pieces[0].p_OP == pytest.approx((0, 0, 0))
     assert spec.inertia == pytest.approx((2e-4, 3e-4, 4e-4, 0, 0, 0))
     assert spec.rest_height == pytest.approx(0.03)
+
+
+def test_the_cli_says_in_one_line_that_it_rested_a_mesh_on_a_stable_face(tmp_path, capsys):
+    from drake_grasp import cli
+
+    path = tmp_path / "capsule.stl"
+    trimesh.creation.capsule(height=0.12, radius=0.035).export(path)
+    assert cli.main(["plan-eigengrasp", "--object", str(path), "--steps", "30001", "--json"]) == 0
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("drake-grasp plan-eigengrasp: warning: ") and "tip over" in err[0]
