@@ -102,6 +102,12 @@ class _Progress:
     detail: str = ""
     decision: object = None
 
+    def __deepcopy__(self, memo) -> "_Progress":
+        """A shallow copy. Drake copies abstract state on every update; the members are never
+        mutated in place (each update builds new ones), so sharing them is safe, and deep-copying
+        the trajectory and plan each time cost about a tenth of a trial's wall time."""
+        return dataclasses.replace(self)
+
 
 class GraspExecutor(LeafSystem):
     """Runs a GraspPlan from a start configuration of the arm.
