@@ -90,10 +90,13 @@ def _parser() -> argparse.ArgumentParser:
         help="Fig. 6: each compliant grasp's shape resemblance against its success, 9 objects",
         description="For each object and each of the three compliant grasps, N trials of 'explore with "
         "the wrist camera, then execute that grasp'. Writes fig6.csv (one row per trial, as they finish; "
-        "rerun to resume), fig6.png and fig6.svg, and a summary beside the paper's 95.6%% (86/90).",
+        "rerun to resume), fig6.png and fig6.svg, and a summary beside the paper's 95.6% (86/90).",
     )
     fig6.add_argument("--quick", action="store_true", help="4 objects x 3 grasps x 2 trials")
     fig6.add_argument("--trials", type=int, help="trials per object and grasp (default 10)")
+    fig6.add_argument("--objects", metavar="NAME|PATH,...",
+                      help="comma-separated objects instead of the paper's nine (catalogue names, primitives "
+                      "such as sphere:0.12, or mesh files): the same study on your own objects")
     _executor_args(fig6)
     fig6.add_argument("--method", choices=["compliant", "oracle"], default="compliant",
                       help="compliant: camera estimates (the paper's algorithm); oracle: ground truth")
@@ -110,6 +113,9 @@ def _parser() -> argparse.ArgumentParser:
     )
     fig7.add_argument("--quick", action="store_true", help="2 objects, 2 trials per grasp")
     fig7.add_argument("--trials", type=int, help="executions of each planned grasp (default 10)")
+    fig7.add_argument("--objects", metavar="NAME|PATH,...",
+                      help="comma-separated objects instead of the paper's six (catalogue names, primitives "
+                      "or mesh files): compare the two methods on your own objects")
     _executor_args(fig7)
     fig7.add_argument("--steps", type=int, default=70_000,
                       help="planner steps, GraspIt!'s counter (default 70000 = 40000 annealing iterations)")
@@ -423,13 +429,30 @@ def _scenario_args(args) -> tuple[str, str]:
     return (str(pathlib.Path(args.scenario).resolve()) if args.scenario else ""), args.scenario_name
 
 
+def _objects_arg(args, default: tuple[str, ...]) -> tuple[str, ...]:
+    """--objects as a tuple (each resolved once here, so that a bad one is a one-line error before
+    any worker starts), or `default`."""
+    from drake_grasp.objects import resolve_object
+
+    if args.objects is None:
+        return tuple(default)
+    objects = tuple(o.strip() for o in args.objects.split(",") if o.strip())
+    if not objects:
+        raise UsageError("--objects needs at least one object")
+    if len(set(objects)) != len(objects):
+        raise UsageError(f"--objects names an object twice: {args.objects}")
+    for o in objects:
+        resolve_object(o)
+    return objects
+
+
 def _run_fig6(args) -> int:
     from drake_grasp.experiments import fig6
     from drake_grasp.objects import PAPER_OBJECTS
 
     executor = _check_sweep_args(args)
     scenario_file, scenario_name = _scenario_args(args)
-    objects = fig6.QUICK_OBJECTS if args.quick else PAPER_OBJECTS
+    objects = _objects_arg(args, fig6.QUICK_OBJECTS if args.quick else PAPER_OBJECTS)
     trials = args.trials or (2 if args.quick else 10)
     config = fig6.Fig6Config(objects=tuple(objects), trials=trials, seed=args.seed, method=args.method)
     out = pathlib.Path(args.out or args.out_default)
@@ -455,7 +478,8 @@ def _run_fig7(args) -> int:
         raise UsageError(f"--steps must be > 30000 (GraspIt!'s step counter starts there), got {args.steps}")
     scenario_file, scenario_name = _scenario_args(args)
     trials = args.trials or (2 if args.quick else 10)
-    config = fig7.Fig7Config(objects=fig7.QUICK_OBJECTS if args.quick else fig7.OBJECTS, trials=trials,
+    config = fig7.Fig7Config(objects=_objects_arg(args, fig7.QUICK_OBJECTS if args.quick else fig7.OBJECTS),
+                             trials=trials,
                              seed=args.seed, steps=args.steps, energy=args.energy,
                              compliant_method=args.compliant_method)
     out = pathlib.Path(args.out or args.out_default)

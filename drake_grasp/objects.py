@@ -33,6 +33,7 @@ not ship ``models/``.
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
 import functools
 import hashlib
@@ -94,6 +95,15 @@ class ObjectError(ValueError):
 
 class UnstablePoseWarning(UserWarning):
     """A mesh given with its z up would tip over on the table, so it is rested on a stable face."""
+
+
+@contextlib.contextmanager
+def pose_warnings_announced():
+    """A context in which UnstablePoseWarning is not shown: for a sweep's worker tasks, which load
+    the same objects again after the command has checked them and said so once."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", UnstablePoseWarning)
+        yield
 
 
 # --- Data ---------------------------------------------------------------------------------------

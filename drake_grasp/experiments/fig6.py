@@ -18,7 +18,7 @@ import pathlib
 
 import numpy as np
 
-from drake_grasp.experiments.results import save_figure
+from drake_grasp.experiments.results import axis_label, save_figure
 
 GRASPS = ("spherical", "cylindrical", "box")
 RESEMBLANCE_OF = {"spherical": "sphere", "cylindrical": "cylinder", "box": "box"}
@@ -142,7 +142,7 @@ def plot(stats: dict[str, dict[str, GraspStats]], out_dir: pathlib.Path) -> list
             if g == choice:
                 ax.scatter([xx], [s.resemblance], s=size + 120, facecolors="none", edgecolors="black", linewidths=1.5)
     ax.set_xticks(range(len(stats)))
-    ax.set_xticklabels([o.replace("_", "\n") for o in stats], fontsize=8)
+    ax.set_xticklabels([axis_label(o) for o in stats], fontsize=8)
     ax.set_ylim(-0.05, 1.1)
     ax.set_ylabel("shape resemblance")
     ax.grid(alpha=0.3, axis="y")

@@ -21,7 +21,7 @@ import time
 
 import numpy as np
 
-from drake_grasp.experiments.results import save_figure
+from drake_grasp.experiments.results import axis_label, save_figure
 
 from drake_grasp.experiments import fig6
 
@@ -72,12 +72,13 @@ def plan_object(obj: str, config: Fig7Config, scenario_file: str = "", scenario_
     """Plans one object (a worker task: plain data in and out); returns (plan dict with the grasps to
     execute under "executed": the three best the arm can reach, planning wall time in s)."""
     from baselines.eigengrasp.planner import plan_eigengrasp
-    from drake_grasp.objects import resolve_object
+    from drake_grasp.objects import pose_warnings_announced, resolve_object
 
     start = time.perf_counter()
-    plan = plan_eigengrasp(resolve_object(obj), max_steps=config.steps, seed=config.seed,
-                           energy_name=config.energy, table=True).to_dict()
-    plan["executed"] = reachable_grasps(plan, obj, scenario_file, scenario_name)
+    with pose_warnings_announced():
+        plan = plan_eigengrasp(resolve_object(obj), max_steps=config.steps, seed=config.seed,
+                               energy_name=config.energy, table=True).to_dict()
+        plan["executed"] = reachable_grasps(plan, obj, scenario_file, scenario_name)
     return plan, time.perf_counter() - start
 
 
@@ -265,7 +266,7 @@ def plot(rows: list[Comparison], out_dir: pathlib.Path, energy: str) -> list[pat
         values = np.nan_to_num(np.asarray(values, float) * 100, nan=0.0)
         ax.bar(x + (k - 1) * width, values, width, label=label, color=colour)
     ax.set_xticks(x)
-    ax.set_xticklabels([c.object.replace("_", "\n") for c in rows], fontsize=8)
+    ax.set_xticklabels([axis_label(c.object) for c in rows], fontsize=8)
     ax.set_ylim(0, 105)
     ax.set_ylabel("success (%)")
     ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), frameon=False)

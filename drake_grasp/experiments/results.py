@@ -91,6 +91,14 @@ class ResultsTable:
             self._rows[self.key(row)] = row
 
 
+def axis_label(obj: str) -> str:
+    """An object's name as a plot's tick label: a mesh file by its stem, words on separate lines
+    (a primitive such as "sphere:0.12" as it is)."""
+    if ":" not in obj and ("/" in obj or pathlib.Path(obj).suffix):
+        obj = pathlib.Path(obj).stem
+    return obj.replace("_", "\n")
+
+
 def save_figure(fig, out_dir: pathlib.Path, stem: str, dpi: int = 120) -> list[pathlib.Path]:
     """Writes a matplotlib figure as out_dir/stem.png and .svg, each atomically (no half-written
     figure if the run is interrupted); returns the two paths."""

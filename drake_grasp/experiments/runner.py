@@ -50,6 +50,13 @@ class TrialSpec:
 
 def run_one(spec: TrialSpec) -> dict:
     """Runs one trial in this process; returns its record as a dict of CSV-ready values."""
+    from drake_grasp.objects import pose_warnings_announced
+
+    with pose_warnings_announced():
+        return _run_one(spec)
+
+
+def _run_one(spec: TrialSpec) -> dict:
     from drake_grasp.grasps import oracle_estimate, plan_compliant_grasp, planned_grasp
     from drake_grasp.objects import resolve_object
     from drake_grasp.station import DEFAULT_SCENARIO_FILE, load_scenario
