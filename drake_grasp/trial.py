@@ -1,8 +1,10 @@
 """One grasp trial: set up, execute a grasp plan, judge it with the paper's success test, record.
 
-Every method (the compliant grasps, from camera estimates or ground truth, and grasps planned by the
-Eigengrasp baseline) runs through `run_trial`, so all are executed by the same arm, hand controller
-and timings, and judged by the same test (DESIGN.md §8):
+Every method runs through the same simulate-and-judge step (`_execute`), so all are executed by the
+same arm, hand controller and timings, and judged by the same test (DESIGN.md §8): `run_trial` for a
+given grasp plan (compliant grasps from ground truth, grasps planned by the Eigengrasp baseline), and
+`run_compliant_trial` for the paper's algorithm, which explores with the wrist camera and decides its
+grasp inside the same simulation (`control.supervisor`). In every trial:
 
 * the object is placed with the trial's seeded variation (position, yaw, friction);
 * the executor moves to the pre-grasp pose, approaches (guarded), closes, lifts 10 cm and holds 10 s;
@@ -191,7 +193,7 @@ def run_compliant_trial(scenario: Scenario, spec: ObjectSpec, *, seed: int, gras
         record.resemblances = dict(estimate.resemblances)
         record.estimate = {k: v for k, v in estimate.to_dict().items() if k not in ("evidence", "timings")}
         record.estimate["decided_at"] = decision.time
-        if estimate.found:
+        if estimate.found and run.X_WO_decision is not None:
             errors = compare(estimate, ground_truth(spec, run.X_WO_decision))
             record.estimate_errors = {
                 "centre": errors.centre, "depth": errors.depth, "axis_deg": errors.axis_deg,
