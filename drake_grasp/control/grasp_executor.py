@@ -5,7 +5,9 @@ unrestricted update) that outputs the WAM's desired joint state and the hand's c
 is *guarded*: the palm moves along its normal at a constant speed and stops as soon as the contact
 force on the hand exceeds a threshold (the palm touched the object), or at the plan's target (the
 estimated surface). The same executor runs the compliant grasps and the grasps planned by other
-methods, so every method is executed by the same arm, controller and timings.
+methods, so every method is executed by the same arm, controller and timings. Given no plan, it
+starts in Phase.EXPLORE: the compliant-grasp supervisor (`control.supervisor`) is such a subclass,
+which decides the plan while the simulation runs.
 """
 
 import dataclasses
