@@ -183,15 +183,11 @@ def _parser() -> argparse.ArgumentParser:
 def _run_resemble(args) -> int:
     import numpy as np
 
-    from drake_grasp.objects import resolve_object
     from drake_grasp.perception import comparison_record, explore, format_comparison
     from drake_grasp.protocol import TrialVariation
     from drake_grasp.trial import apply_variation
 
-    _check_seed(args.seed)
-    replay = _writable_file(args.replay, ".html") if args.replay else None
-    scenario = _load_scenario(args)
-    spec = resolve_object(args.object)
+    replay, scenario, spec = _single_run_inputs(args)
     look_at = np.array([scenario.object.x, scenario.object.y, 0.0])  # where the object should be
     if not args.nominal:
         scenario, spec = apply_variation(scenario, spec, TrialVariation.draw(args.seed, scenario.protocol))
@@ -249,6 +245,16 @@ def _check_seed(seed: int) -> None:
         raise UsageError(f"--seed must be in [0, 2^32), got {seed}")
 
 
+def _single_run_inputs(args) -> tuple:
+    """(replay path or None, scenario, object) of a single-run command (demo, trial, resemble): the
+    seed, the replay file name, the scenario and the object checked, each a one-line error."""
+    from drake_grasp.objects import resolve_object
+
+    _check_seed(args.seed)
+    replay = _writable_file(args.replay, ".html") if args.replay else None
+    return replay, _load_scenario(args), resolve_object(args.object)
+
+
 def _writable_file(path: str, suffix: str) -> pathlib.Path:
     p = pathlib.Path(path)
     if p.suffix.lower() != suffix:
@@ -260,12 +266,8 @@ def _writable_file(path: str, suffix: str) -> pathlib.Path:
 
 def _run_demo(args) -> int:
     from drake_grasp.demo import run_demo
-    from drake_grasp.objects import resolve_object
 
-    _check_seed(args.seed)
-    replay = _writable_file(args.replay, ".html") if args.replay else None
-    scenario = _load_scenario(args)
-    spec = resolve_object(args.object)
+    replay, scenario, spec = _single_run_inputs(args)
     scenario.object.name = args.object
     mode = ComplianceMode.parse(args.mode) if args.mode else None
     result = run_demo(scenario, mode=mode, replay_html=str(replay) if replay else None, object_spec=spec,
@@ -301,13 +303,9 @@ def _run_fig4(args) -> int:
 
 def _run_trial(args) -> int:
     from drake_grasp.grasps import oracle_estimate, plan_compliant_grasp
-    from drake_grasp.objects import resolve_object
     from drake_grasp.trial import run_compliant_trial, run_trial
 
-    _check_seed(args.seed)
-    replay = _writable_file(args.replay, ".html") if args.replay else None
-    scenario = _load_scenario(args)
-    spec = resolve_object(args.object)
+    replay, scenario, spec = _single_run_inputs(args)
     planner_options = {"--energy": args.energy, "--steps": args.steps, "--plan-seed": args.plan_seed,
                        "--rank": args.rank}
     if args.method == "eigengrasp":
@@ -474,8 +472,7 @@ def _run_fig7(args) -> int:
     from drake_grasp.experiments import fig7
 
     executor = _check_sweep_args(args)
-    if args.steps is None or args.steps <= 30_000:
-        raise UsageError(f"--steps must be > 30000 (GraspIt!'s step counter starts there), got {args.steps}")
+    _check_planner_args(str(args.steps), args.energy)
     scenario_file, scenario_name = _scenario_args(args)
     trials = args.trials or (2 if args.quick else 10)
     config = fig7.Fig7Config(objects=_objects_arg(args, fig7.QUICK_OBJECTS if args.quick else fig7.OBJECTS),

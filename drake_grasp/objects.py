@@ -54,6 +54,7 @@ from pydrake.geometry import Box, Capsule, Convex, Cylinder, Ellipsoid, Mesh, Sh
 from pydrake.math import RigidTransform, RollPitchYaw, RotationMatrix
 from pydrake.multibody.parsing import Parser
 from pydrake.multibody.tree import CalcSpatialInertia
+from scipy.spatial import ConvexHull, QhullError
 
 from drake_grasp.contact import ContactParameters, compliant_proximity_sdf
 
@@ -957,11 +958,11 @@ def _rests_stably_upright(hull: trimesh.Trimesh, p_Ocm: np.ndarray) -> bool:
     if not np.any(bottom):
         return False
     polygon = np.unique(np.round(hull.triangles[bottom].reshape(-1, 3)[:, :2], 9), axis=0)
+    if len(polygon) < 3:
+        return False  # a point or an edge
     try:
-        from scipy.spatial import ConvexHull
-
         equations = ConvexHull(polygon).equations  # a·x + b ≤ 0 inside
-    except Exception:  # fewer than 3 distinct points, or collinear: an edge
+    except QhullError:  # collinear points: an edge
         return False
     return bool(np.all(equations[:, :2] @ p_Ocm[:2] + equations[:, 2] <= 1e-9))
 
