@@ -19,7 +19,7 @@ primitives:
   (`GraspExecutor`), from where the exploration left the arm; the switch now routes the supervisor's
   arm command.
 
-If the object was never seen, or the arm cannot reach the chosen grasp, the sequence ends (Phase.DONE)
+If the object was never seen, or the arm cannot reach the chosen grasp, the sequence ends (GraspPhase.DONE)
 with that outcome instead of grasping.
 """
 
@@ -31,7 +31,8 @@ from pydrake.systems.framework import Context, DiagramBuilder, InputPortIndex
 from pydrake.systems.primitives import PortSwitch
 
 from drake_grasp.control.arm_motion import UNREACHABLE, ReachError
-from drake_grasp.control.grasp_executor import ConnectGraspExecutor, ExecutionTimes, GraspExecutor, _Progress
+from drake_grasp.control.grasp_executor import ConnectGraspExecutor, GraspExecutor, _Progress
+from drake_grasp.protocol import ExecutionTimes
 from drake_grasp.grasps import GRASP_OF_SHAPE, GraspPlan, GraspType, plan_compliant_grasp
 from drake_grasp.primitives.estimate import OBJECT_NOT_FOUND, ObjectEstimate
 from drake_grasp.primitives.sequencer import phase_value
@@ -108,7 +109,7 @@ class CompliantGraspSupervisor(GraspExecutor):
         executed = self._forced_grasp or chosen
         plan = plan_compliant_grasp(executed, estimate.as_grasp_estimate())
         decision = Decision(t, estimate, chosen, executed, plan)
-        q_now = np.asarray(self.GetInputPort("wam_state").Eval(context), float)[:7]
+        q_now = np.asarray(self._wam_state_port.Eval(context), float)[:7]
         try:
             started = self._start_grasp(progress, plan, q_now, t)
         except ReachError as e:
@@ -116,23 +117,23 @@ class CompliantGraspSupervisor(GraspExecutor):
         return dataclasses.replace(started, decision=decision)
 
 
-def AddCompliantGraspSupervisor(builder: DiagramBuilder, station, station_system, primitives, sequencer,
+def AddCompliantGraspSupervisor(builder: DiagramBuilder, station, primitives, sequencer,
                                 q_start: np.ndarray, times: ExecutionTimes, forced_grasp: str | None = None
                                 ) -> CompliantGraspSupervisor:
     """Adds the supervisor and the arm switch, and connects them to the station, the primitives'
     estimator, the sequencer and the camera motion controller.
 
     Args:
-        builder: holds `station_system`, and the primitives added by
+        builder: holds the station's Diagram (`station.diagram`), and the primitives added by
             `perception.AddVisualPrimitives(..., connect_arm=False)` and `AddExplorationSequencer`.
-        station: the station (its plant, scene graph, arm and hand).
-        station_system: the station's Diagram in `builder`.
+        station: the station (its Diagram, plant, scene graph, arm and hand).
         primitives: `perception.VisualPrimitives`.
         sequencer: the ExplorationSequencer.
         q_start: the arm's joint angles at time 0, rad.
         times: the grasp sequence's timings (the scenario's protocol.execution).
         forced_grasp: execute this grasp instead of the chosen one.
     """
+    station_system = station.diagram
     switch = builder.AddNamedSystem("arm_command_switch", PortSwitch(14))
     camera_port = switch.DeclareInputPort("camera_motion")
     grasp_port = switch.DeclareInputPort("grasp")
