@@ -16,6 +16,10 @@ Output ports:
     body_poses, contact_results, query_object   (the plant's and the scene graph's).
     camera.color_image, camera.depth_image, camera.label_image   the wrist camera (RgbdSensor).
 
+A system outside the station that reads or writes one of these signals names its port exactly so
+(the grasp executor's `wam.state` in, `wam.desired_state`, `hand.command`, `hand.finger_preshape`
+out), so that every connection reads `Connect(a.GetOutputPort(name), b.GetInputPort(name))`.
+
 The scenario is a dataclass loaded with Drake's `yaml_load_typed`, in the style of Drake's
 hardware_sim example; every number that is a choice (time step, contact model, gains, camera) lives in
 the YAML files under diagrams/.

@@ -95,18 +95,18 @@ def test_grasp_executor_runs_its_phases_on_time_without_contact(station):
     executor = GraspExecutor(plant, station.scene_graph, station.wam, plant.GetBodyIndices(station.hand), plan,
                              q_start, times)
     context = executor.CreateDefaultContext()
-    executor.GetInputPort("wam_state").FixValue(context, np.concatenate([q_start, np.zeros(7)]))
+    executor.GetInputPort("wam.state").FixValue(context, np.concatenate([q_start, np.zeros(7)]))
     executor.GetInputPort("contact_results").FixValue(context, ContactResults())
     motion = executor.progress(context).motion
     simulator = Simulator(executor, context)
     assert executor.phase(context) == GraspPhase.MOVE
-    assert executor.GetOutputPort("hand_command").Eval(context)[1] == float(HandAction.OPEN)
+    assert executor.GetOutputPort("hand.command").Eval(context)[1] == float(HandAction.OPEN)
 
     simulator.AdvanceTo(motion.move_time - 0.02)
     assert executor.phase(context) == GraspPhase.MOVE
     simulator.AdvanceTo(motion.move_time + 0.02)
     assert executor.phase(context) == GraspPhase.APPROACH
-    q_at_pregrasp = executor.GetOutputPort("wam_desired_state").Eval(context)[:7]
+    q_at_pregrasp = executor.GetOutputPort("wam.desired_state").Eval(context)[:7]
     X_WP = ArmKinematics(plant, station.wam).palm_pose(q_at_pregrasp)
     # The approach starts at the pre-grasp pose (within what the arm moved in 0.02 s of approach).
     assert np.linalg.norm(X_WP.translation() - plan.X_WP_pregrasp.translation()) < 0.005
@@ -116,7 +116,7 @@ def test_grasp_executor_runs_its_phases_on_time_without_contact(station):
     progress = executor.progress(context)
     assert progress.phase == GraspPhase.CLOSE and not progress.stopped_on_contact
     assert progress.approach_travel == pytest.approx(plan.approach_distance, abs=0.002)
-    assert executor.GetOutputPort("hand_command").Eval(context)[1] == float(HandAction.CLOSE)
+    assert executor.GetOutputPort("hand.command").Eval(context)[1] == float(HandAction.CLOSE)
 
     simulator.AdvanceTo(end_of_approach + times.close_time + times.lift_time + times.hold_time + 0.1)
     progress = executor.progress(context)
@@ -126,6 +126,6 @@ def test_grasp_executor_runs_its_phases_on_time_without_contact(station):
     assert starts[GraspPhase.HOLD] - starts[GraspPhase.LIFT] == pytest.approx(times.lift_time, abs=0.011)
     assert starts[GraspPhase.DONE] - starts[GraspPhase.HOLD] == pytest.approx(times.hold_time, abs=0.011)
     # The lift raised the palm by the lift height.
-    q_end = executor.GetOutputPort("wam_desired_state").Eval(context)[:7]
+    q_end = executor.GetOutputPort("wam.desired_state").Eval(context)[:7]
     lifted = ArmKinematics(plant, station.wam).palm_pose(q_end).translation()
     assert lifted[2] - plan.X_WP_target.translation()[2] == pytest.approx(times.lift_height, abs=0.005)

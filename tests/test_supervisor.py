@@ -37,7 +37,7 @@ def _decide(estimate: ObjectEstimate, exploration_phase: ExplorationPhase, force
     supervisor = CompliantGraspSupervisor(plant, station.scene_graph, station.wam, plant.GetBodyIndices(station.hand),
                                           q_start, scenario.protocol.execution, (CAMERA, GRASP), forced_grasp)
     context = supervisor.CreateDefaultContext()
-    supervisor.GetInputPort("wam_state").FixValue(context, np.concatenate([q_start, np.zeros(7)]))
+    supervisor.GetInputPort("wam.state").FixValue(context, np.concatenate([q_start, np.zeros(7)]))
     supervisor.GetInputPort("contact_results").FixValue(context, ContactResults())
     supervisor.GetInputPort("exploration_phase").FixValue(context, [float(exploration_phase)])
     supervisor.GetInputPort("object_estimate").FixValue(context, estimate)
@@ -49,7 +49,7 @@ def test_while_exploring_the_camera_drives_the_arm_and_the_hand_stays_open():
     supervisor, context = _decide(_ball_estimate(), ExplorationPhase.RESEMBLANCE)
     assert supervisor.phase(context) == GraspPhase.EXPLORE and supervisor.decision(context) is None
     assert supervisor.GetOutputPort("arm_source").Eval(context) == CAMERA
-    spread, action = supervisor.GetOutputPort("hand_command").Eval(context)
+    spread, action = supervisor.GetOutputPort("hand.command").Eval(context)
     assert spread == 0.0 and action == 0.0  # HandAction.OPEN
 
 

@@ -100,12 +100,12 @@ class GraspExecutor(LeafSystem):
     """Runs a GraspPlan from a start configuration of the arm.
 
     Input ports:
-        wam_state: the WAM's [q; v] (7 + 7).
+        wam.state: the WAM's [q; v] (7 + 7).
         contact_results: the plant's ContactResults.
     Output ports:
-        wam_desired_state: [q; v] for the station's ``wam.desired_state``.
-        hand_command: [spread, HandAction] for ``hand.command``.
-        finger_preshape: proximal angles (3) for ``hand.finger_preshape``.
+        wam.desired_state: [q; v] for the station's ``wam.desired_state``.
+        hand.command: [spread, HandAction] for ``hand.command``.
+        hand.finger_preshape: proximal angles (3) for ``hand.finger_preshape``.
         phase: the current GraspPhase, as a number.
 
     Raises (at construction): ReachError if the arm cannot reach the pre-grasp or approach poses.
@@ -134,16 +134,16 @@ class GraspExecutor(LeafSystem):
         if plan is not None:
             initial = self._start_grasp(initial, plan, q_start, 0.0)
 
-        self._wam_state_port = self.DeclareVectorInputPort("wam_state", 14)
+        self._wam_state_port = self.DeclareVectorInputPort("wam.state", 14)
         self._contact_results_port = self.DeclareAbstractInputPort(
             "contact_results", AbstractValue.Make(ContactResults()))
         self._progress_index = self.DeclareAbstractState(AbstractValue.Make(initial))
         self.DeclarePeriodicUnrestrictedUpdateEvent(times.update_period, 0.0, self._Update)
-        self.DeclareVectorOutputPort("wam_desired_state", 14, self._CalcDesiredState,
+        self.DeclareVectorOutputPort("wam.desired_state", 14, self._CalcDesiredState,
                                      {self.abstract_state_ticket(self._progress_index), self.time_ticket()})
-        self.DeclareVectorOutputPort("hand_command", 2, self._CalcHandCommand,
+        self.DeclareVectorOutputPort("hand.command", 2, self._CalcHandCommand,
                                      {self.abstract_state_ticket(self._progress_index)})
-        self.DeclareVectorOutputPort("finger_preshape", 3, self._CalcPreshape,
+        self.DeclareVectorOutputPort("hand.finger_preshape", 3, self._CalcPreshape,
                                      {self.abstract_state_ticket(self._progress_index)})
         self.DeclareVectorOutputPort("phase", 1, self._CalcPhase, {self.abstract_state_ticket(self._progress_index)})
 
@@ -303,12 +303,12 @@ def ConnectGraspExecutor(builder: DiagramBuilder, station_system, executor: Gras
                          ) -> None:
     """Connects an executor in `builder` to the station's Diagram `station_system` (both added to it):
     the arm's and the contacts' feedback in, the hand's commands out, and (with `arm`) the arm command."""
-    builder.Connect(station_system.GetOutputPort("wam.state"), executor.GetInputPort("wam_state"))
+    builder.Connect(station_system.GetOutputPort("wam.state"), executor.GetInputPort("wam.state"))
     builder.Connect(station_system.GetOutputPort("contact_results"), executor.GetInputPort("contact_results"))
-    builder.Connect(executor.GetOutputPort("hand_command"), station_system.GetInputPort("hand.command"))
-    builder.Connect(executor.GetOutputPort("finger_preshape"), station_system.GetInputPort("hand.finger_preshape"))
+    builder.Connect(executor.GetOutputPort("hand.command"), station_system.GetInputPort("hand.command"))
+    builder.Connect(executor.GetOutputPort("hand.finger_preshape"), station_system.GetInputPort("hand.finger_preshape"))
     if arm:
-        builder.Connect(executor.GetOutputPort("wam_desired_state"), station_system.GetInputPort("wam.desired_state"))
+        builder.Connect(executor.GetOutputPort("wam.desired_state"), station_system.GetInputPort("wam.desired_state"))
 
 
 def _hold(q: np.ndarray, t: float):

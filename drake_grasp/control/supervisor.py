@@ -6,8 +6,8 @@ primitives:
     ExplorationSequencer ──phase──────────────┐
     ObjectEstimator ──estimate────────────────┴─> CompliantGraspSupervisor ──arm_source──> PortSwitch
     CameraTwistController ──wam.desired_state──────────────────────────────────────────┘    │
-    CompliantGraspSupervisor ──wam_desired_state──────────────────────────────────> PortSwitch ──> station
-    CompliantGraspSupervisor ──hand_command, finger_preshape──────────────────────────────────> station
+    CompliantGraspSupervisor ──wam.desired_state──────────────────────────────────> PortSwitch ──> station
+    CompliantGraspSupervisor ──hand.command, hand.finger_preshape─────────────────────────────────> station
 
 * **explore**: while the sequencer runs the primitives, the camera motion drives the arm (the switch
   routes it to the station) and the hand is held open.
@@ -60,13 +60,13 @@ class Decision:
 class CompliantGraspSupervisor(GraspExecutor):
     """Explores, decides the compliant grasp from the estimate, and executes it (module docstring).
 
-    Input ports (besides GraspExecutor's `wam_state` and `contact_results`):
+    Input ports (besides GraspExecutor's `wam.state` and `contact_results`):
         exploration_phase (1): the ExplorationSequencer's phase.
         object_estimate: the ObjectEstimator's estimate (abstract).
     Output ports (besides GraspExecutor's):
         arm_source: the InputPortIndex of the arm switch's port that drives the WAM: the camera
             motion while exploring (and after a sequence that ended without a grasp), the
-            supervisor's own `wam_desired_state` from the decision on.
+            supervisor's own `wam.desired_state` from the decision on.
     """
 
     def __init__(self, plant, scene_graph, wam, hand_bodies: list, q_start: np.ndarray, times: ExecutionTimes,
@@ -142,7 +142,7 @@ def AddCompliantGraspSupervisor(builder: DiagramBuilder, station, primitives, se
         plant, station.scene_graph, station.wam, plant.GetBodyIndices(station.hand), q_start, times,
         (camera_port.get_index(), grasp_port.get_index()), forced_grasp))
     builder.Connect(primitives.camera_motion.GetOutputPort("wam.desired_state"), camera_port)
-    builder.Connect(supervisor.GetOutputPort("wam_desired_state"), grasp_port)
+    builder.Connect(supervisor.GetOutputPort("wam.desired_state"), grasp_port)
     builder.Connect(supervisor.GetOutputPort("arm_source"), switch.get_port_selector_input_port())
     builder.Connect(switch.get_output_port(), station_system.GetInputPort("wam.desired_state"))
     builder.Connect(sequencer.GetOutputPort("phase"), supervisor.GetInputPort("exploration_phase"))
