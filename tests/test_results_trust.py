@@ -281,3 +281,20 @@ def test_a_sweep_killed_with_sigkill_leaves_no_worker_and_a_rerun_gives_the_clea
     assert rerun.returncode == 0, err
     assert f"{csv_path}:2: damaged record, recomputing" in err and "Traceback" not in err
     assert _records(csv_path) == reference  # nothing lost, doubled or stale
+
+
+def test_the_reaper_ends_a_helper_that_would_outlive_a_killed_parent():
+    # A helper in its own session ignores its parent's death (as Ray's agents do); the reaper ends it.
+    parent = subprocess.Popen(
+        [sys.executable, "-c", "import subprocess, time; from drake_grasp.experiments import reaper; "
+         "reaper.start(); helper = subprocess.Popen(['sleep', '60'], start_new_session=True); "
+         "print(helper.pid, flush=True); time.sleep(60)"],
+        stdout=subprocess.PIPE, text=True, env=dict(os.environ, PYTHONPATH=str(ROOT)))
+    helper = int(parent.stdout.readline())
+    time.sleep(1.5)  # the reaper notes the helper (it looks twice a second)
+    parent.kill()
+    parent.wait()
+    deadline = time.monotonic() + 5.0
+    while time.monotonic() < deadline and pathlib.Path(f"/proc/{helper}").exists():
+        time.sleep(0.1)
+    assert not pathlib.Path(f"/proc/{helper}").exists()

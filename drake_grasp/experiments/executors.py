@@ -139,7 +139,8 @@ class RayExecutor(Executor):
     """Runs each task as a Ray task (one CPU each), on a local Ray instance or a cluster.
 
     Ray starts on first use. Without `address` it starts a local instance with `workers` CPUs (default:
-    every core) and no dashboard, and `close()` shuts it down; with `address` ("auto", "HOST:PORT" or
+    every core) and no dashboard, and `close()` shuts it down (if this process is killed instead, a
+    `reaper` process ends the instance's processes); with `address` ("auto", "HOST:PORT" or
     "ray://HOST:10001") it joins that cluster, whose CPUs decide how many tasks run at once; the
     package must be installed on its nodes. If this process already has Ray initialised (a test, a
     notebook), that instance is used and left running.
@@ -159,6 +160,7 @@ class RayExecutor(Executor):
         self.progress = progress
         self._started = False
         self._ready = False
+        self._reaper = None
 
     def describe(self) -> str:
         if self.address:
@@ -181,6 +183,9 @@ class RayExecutor(Executor):
                     _probe(self.address)
                     ray.init(address=self.address, **kwargs)
                 else:  # "local": a new instance, never one a `ray start` left running on this machine
+                    from drake_grasp.experiments import reaper
+
+                    self._reaper = reaper.start()
                     ray.init(address="local", num_cpus=self.workers, **kwargs)
             except Exception as e:  # Ray raises ConnectionError, RuntimeError, ... : report one line
                 where = f"join the Ray cluster at {self.address}" if self.address else "start a local Ray instance"
@@ -214,6 +219,9 @@ class RayExecutor(Executor):
             import ray
 
             ray.shutdown()
+        if self._reaper is not None:
+            self._reaper.stop()
+            self._reaper = None
         self._started = self._ready = False
 
 
