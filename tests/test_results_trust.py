@@ -298,3 +298,10 @@ def test_the_reaper_ends_a_helper_that_would_outlive_a_killed_parent():
     while time.monotonic() < deadline and pathlib.Path(f"/proc/{helper}").exists():
         time.sleep(0.1)
     assert not pathlib.Path(f"/proc/{helper}").exists()
+
+
+def test_a_record_that_would_not_read_back_is_refused_when_written(tmp_path):
+    table = ResultsTable(tmp_path / "t.csv", FIELDS, KEY, TYPES)
+    with pytest.raises(RuntimeError, match="y does not match"):
+        table.append([{"name": "a", "x": 1.0, "y": None, "note": ""}])
+    assert len(ResultsTable(tmp_path / "t.csv", FIELDS, KEY, TYPES)) == 0

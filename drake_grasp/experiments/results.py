@@ -166,7 +166,13 @@ class ResultsTable:
             key = self.key(values)
             if key in self._rows:
                 continue
-            lines.append(format_line([values[k] for k in self.fieldnames]))
+            line = format_line([values[k] for k in self.fieldnames])
+            if parse_line(line[:-1], self.fieldnames, self.types) is None:
+                # A record this table would reject when read back (and compute again, forever).
+                bad = [k for k in self.fieldnames if not PARSERS[self.types.get(k, "str")](values[k])]
+                raise RuntimeError(f"{self.path}: a record's {', '.join(bad) or 'text'} does not match its "
+                                   "column type (a bug)")
+            lines.append(line)
             self._rows[key] = values
         if not lines:
             return 0
