@@ -305,3 +305,16 @@ def test_a_record_that_would_not_read_back_is_refused_when_written(tmp_path):
     with pytest.raises(RuntimeError, match="y does not match"):
         table.append([{"name": "a", "x": 1.0, "y": None, "note": ""}])
     assert len(ResultsTable(tmp_path / "t.csv", FIELDS, KEY, TYPES)) == 0
+
+
+def test_reproduce_and_fig7_check_every_results_file_before_any_work(tmp_path, capsys):
+    old = tmp_path / "fig6" / "fig6.csv"
+    old.parent.mkdir()
+    old.write_text("object,method,grasp,seed,success\n")  # an older version's file
+    start = time.perf_counter()
+    assert cli.main(["reproduce", "--quick", "--out", str(tmp_path)]) == 2
+    assert f"{old}: written by an older version" in _error_line(capsys)
+    assert cli.main(["fig7", "--quick", "--fig6", str(old.parent), "--out", str(tmp_path / "f7")]) == 2
+    assert f"{old}: written by an older version" in _error_line(capsys)
+    assert time.perf_counter() - start < 20  # no sweep, no planning
+    assert not (tmp_path / "fig4" / "fig4.csv").exists()

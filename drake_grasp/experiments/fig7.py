@@ -316,9 +316,13 @@ def run_comparison(config: Fig7Config, out_dir: pathlib.Path, fig6_dir: pathlib.
     """
     from drake_grasp.experiments.executors import LocalExecutor
     from drake_grasp.experiments.lock import results_lock
-    from drake_grasp.experiments.runner import fingerprints, run_trials, select, trial_table
+    from drake_grasp.experiments.results import check_results_file
+    from drake_grasp.experiments.runner import TRIAL_FIELDS, fingerprints, run_trials, select, trial_table
 
+    fig6_csv = pathlib.Path(fig6_dir) / "fig6.csv"
     with results_lock(out_dir):
+        for path in (out_dir / "fig7.csv", out_dir / "fig7_compliant.csv", fig6_csv):  # before planning
+            check_results_file(path, TRIAL_FIELDS)
         executor = executor or LocalExecutor(workers)
         plans = ensure_plans(out_dir, config, executor, scenario_file=scenario_file, scenario_name=scenario_name)
         eigen_rows = run_trials(eigengrasp_specs(plans, config, scenario_file, scenario_name), out_dir / "fig7.csv",
@@ -327,7 +331,6 @@ def run_comparison(config: Fig7Config, out_dir: pathlib.Path, fig6_dir: pathlib.
                                     method=config.compliant_method)
         f6_specs = fig6.trial_specs(f6_config, scenario_file, scenario_name)
         f6_prints = fingerprints(f6_specs)
-        fig6_csv = pathlib.Path(fig6_dir) / "fig6.csv"
         # Fig. 6's records of the same inputs (same fingerprints) are reused; its file is only read.
         reused = select(trial_table(fig6_csv, read_only=True).rows(), f6_specs, f6_prints) \
             if fig6_csv.is_file() else []

@@ -178,8 +178,14 @@ def run(out_dir: pathlib.Path, quick: bool, workers: int | None = None, seed: in
     """Runs (or resumes) Fig. 4, 6 and 7 under out_dir and writes out_dir/report.md. Everything runs on
     `executor` (`executors.make_executor`), or with none on a local executor of `workers` processes."""
     from drake_grasp.experiments.lock import results_lock
+    from drake_grasp.experiments.results import check_results_file
+    from drake_grasp.experiments.runner import TRIAL_FIELDS
 
     with results_lock(out_dir):
+        # Every results file this run will use, checked before the first sweep starts.
+        check_results_file(out_dir / "fig4" / "fig4.csv", fig4.FIELDS)
+        for path in ("fig6/fig6.csv", "fig7/fig7.csv", "fig7/fig7_compliant.csv"):
+            check_results_file(out_dir / path, TRIAL_FIELDS)
         return _run(out_dir, quick, workers, seed, energy, executor)
 
 

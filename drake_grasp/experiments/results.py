@@ -224,14 +224,32 @@ class ResultsTable:
             write_atomically(self.path, "".join(kept))
 
     def _reject_header(self, header: str) -> None:
-        columns = header.strip().split(",")
-        if FINGERPRINT in self.fieldnames and (FINGERPRINT not in columns or CHECK not in columns):
-            raise ResultsFileError(
-                f"{self.path}: written by an older version of drake-grasp (records without a fingerprint "
-                "of their inputs); move it away or choose another --out to start fresh")
+        _reject_header(self.path, header, self.fieldnames)
+
+
+def check_results_file(path: str | os.PathLike, fieldnames: Sequence[str]) -> None:
+    """Raises ResultsFileError (one line) if a results file exists but this version cannot use it (a
+    folder, or other columns): a sweep calls it for every file it will use before any work starts."""
+    path = pathlib.Path(path)
+    if path.is_dir():
+        raise ResultsFileError(f"{path}: is a directory, not a results file")
+    if not path.is_file() or path.stat().st_size == 0:
+        return
+    with open(path, "rb") as f:
+        header = f.readline().decode(errors="replace")
+    if header != ",".join(list(fieldnames) + [CHECK]) + "\n":
+        _reject_header(path, header, fieldnames)
+
+
+def _reject_header(path: pathlib.Path, header: str, fieldnames: Sequence[str]) -> None:
+    columns = header.strip().split(",")
+    if FINGERPRINT in fieldnames and (FINGERPRINT not in columns or CHECK not in columns):
         raise ResultsFileError(
-            f"{self.path}: its columns do not match this version's; move it away or choose another --out "
-            "to start fresh")
+            f"{path}: written by an older version of drake-grasp (records without a fingerprint "
+            "of their inputs); move it away or choose another --out to start fresh")
+    raise ResultsFileError(
+        f"{path}: its columns do not match this version's; move it away or choose another --out "
+        "to start fresh")
 
 
 def write_atomically(path: pathlib.Path, text: str) -> None:
