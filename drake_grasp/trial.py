@@ -157,10 +157,10 @@ def run_compliant_trial(scenario: Scenario, spec: ObjectSpec, *, seed: int, gras
     """
     from drake_grasp.control.supervisor import AddCompliantGraspSupervisor
     from drake_grasp.perception import (AddExplorationSequencer, AddVisualPrimitives, compare, ground_truth,
-                                        load_perception_config, start_camera_pose, start_configuration)
+                                        start_camera_pose, start_configuration)
 
     wall_start = time.perf_counter()
-    config = perception_config or load_perception_config()
+    config = perception_config or scenario.perception
     protocol = scenario.protocol
     variation = TrialVariation.draw(seed, protocol)
     nominal = np.array([scenario.object.x, scenario.object.y, 0.0])

@@ -48,7 +48,7 @@ from drake_grasp.primitives.silhouette import CameraSample
 
 @dataclasses.dataclass
 class DepthParams:
-    """Choices of the depth primitive (diagrams/perception.scenarios.yaml).
+    """Choices of the depth primitive (the scenario's `perception:`, diagrams/station.scenarios.yaml).
 
     Attributes:
         centring_gain: rad/s of camera rotation per rad of centroid offset.

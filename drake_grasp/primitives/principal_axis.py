@@ -38,7 +38,7 @@ from drake_grasp.primitives.silhouette import CameraSample
 
 @dataclasses.dataclass
 class PrincipalAxisParams:
-    """Choices of the principal-axis primitive (diagrams/perception.scenarios.yaml).
+    """Choices of the principal-axis primitive (the scenario's `perception:`, diagrams/station.scenarios.yaml).
 
     Attributes:
         roll_gain: rad/s of roll per rad of blob-axis angle.

@@ -26,7 +26,7 @@ asymmetric view φ.
 * box = 1 − max(I_a, R · I_b): no invariance about the principal axis (the paper asks for
   eccentricity ≫ 1 too; we drop that so that cubes, square from above, are boxes: choice).
 
-All three lie in [0, 1]. τ_V and τ_e are choices (diagrams/perception.scenarios.yaml).
+All three lie in [0, 1]. τ_V and τ_e are choices (the scenario's `perception:`, diagrams/station.scenarios.yaml).
 """
 
 import dataclasses
