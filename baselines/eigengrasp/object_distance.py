@@ -28,10 +28,6 @@ ANALYTIC_KINDS = ("sphere", "box", "cylinder", "capsule")
 
 _TINY = 1e-12
 
-EDGE_FACETS = 6
-"""Facets (those of largest plane distance) whose edges the edge fallback of
-``ConvexPiecesDistance`` tries; a tuning number: any value gives exact distances."""
-
 
 class PrimitiveDistance:
     """Distances from points to the union of an object's analytic pieces.
@@ -196,7 +192,8 @@ class ConvexPiecesDistance:
     1. the closest point x of the maximising facet's boundary (an edge or a vertex), accepted when
        (q − x) · (v − x) ≤ 0 for every hull vertex v;
     2. the closest of the closest points of the facets visible from q (s_f > 0), one of which holds
-       the piece's closest point (trimesh's point-triangle projection).
+       the piece's closest point (trimesh's point-triangle projection), skipping those whose
+       bounding sphere is farther than the piece's nearest vertex.
 
     The union's distance is the smallest over the pieces (inside a piece: the most negative).
     """
@@ -246,6 +243,8 @@ class ConvexPiecesDistance:
         self._edges = edges
         self._edge_lengths_sq = np.maximum(np.einsum("pfej,pfej->pfe", edges, edges), _TINY)
         self._tolerance = tolerance
+        self._facet_centres = triangles.mean(axis=2)  # (P, F, 3)
+        self._facet_radii = np.linalg.norm(triangles - self._facet_centres[:, :, None, :], axis=3).max(axis=2)
         self._normals_rows = self._normals.reshape(-1, 3)  # (P F, 3), for one matrix product
         self._vertex_rows = self._vertices.reshape(-1, 3)  # (P V, 3)
         self._vertex_sq = np.einsum("vj,vj->v", self._vertex_rows, self._vertex_rows)
@@ -313,13 +312,11 @@ class ConvexPiecesDistance:
         """Fallback 1, in place: the closest point x of the maximising facet's boundary, where it
         passes the optimality test against every vertex of the piece."""
         n_k, p_k = np.nonzero(todo)
-        # The edges of the EDGE_FACETS facets of largest plane distance.
-        f_k = np.argpartition(-s[n_k, p_k], EDGE_FACETS - 1, axis=1)[:, :EDGE_FACETS]  # (K, m)
+        f_k = facet[n_k, p_k]
         qk = q[n_k]
-        triangles = self._triangles[p_k[:, None], f_k].reshape(len(n_k), -1, 3)  # (K, 3m, 3)
-        edges = self._edges[p_k[:, None], f_k].reshape(len(n_k), -1, 3)
-        lengths_sq = self._edge_lengths_sq[p_k[:, None], f_k].reshape(len(n_k), -1)
-        w = qk[:, None, :] - triangles  # (K, 3m, 3)
+        triangles, edges = self._triangles[p_k, f_k], self._edges[p_k, f_k]
+        lengths_sq = self._edge_lengths_sq[p_k, f_k]
+        w = qk[:, None, :] - triangles  # (K, 3 edges, 3)
         t = np.clip(np.einsum("kej,kej->ke", w, edges) / lengths_sq, 0.0, 1.0)
         offset = w - t[..., None] * edges  # from each edge's closest point to q
         dist_sq = np.einsum("kej,kej->ke", offset, offset)
@@ -338,7 +335,11 @@ class ConvexPiecesDistance:
     def _visible_facets_fallback(self, q, s, facet, nearest, todo, d, g, exact) -> None:
         """Fallback 2, in place: the closest of the closest points of the facets visible from q."""
         n_k, p_k = np.nonzero(todo)
-        pair, f = np.nonzero(s[n_k, p_k] > 0.0)
+        # A facet whose bounding sphere is farther than the piece's nearest vertex cannot hold the
+        # closest point.
+        upper = np.linalg.norm(q[n_k] - self._vertices[p_k, nearest[n_k, p_k]], axis=1)
+        to_centres = np.linalg.norm(q[n_k, None, :] - self._facet_centres[p_k], axis=2)  # (K, F)
+        pair, f = np.nonzero((s[n_k, p_k] > 0.0) & (to_centres - self._facet_radii[p_k] <= upper[:, None]))
         closest = trimesh.triangles.closest_point(self._triangles[p_k[pair], f], q[n_k[pair]])
         v = q[n_k[pair]] - closest
         dist = np.linalg.norm(v, axis=1)
