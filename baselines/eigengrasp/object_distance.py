@@ -187,11 +187,12 @@ class ConvexPiecesDistance:
     distance to the nearest vertex of any piece, cannot be the closest. The others get exact
     distances, cheap tests first, culling again between them:
 
-    0. the piece's nearest vertex v, accepted when (q − v) · (w − v) ≤ 0 for every hull vertex w
-       (the optimality condition of a projection onto a convex set; often so for a far point);
     1. the closest point x of the maximising facet's boundary (an edge or a vertex), accepted when
-       (q − x) · (v − x) ≤ 0 for every hull vertex v;
-    2. the closest of the closest points of the facets visible from q (s_f > 0), one of which holds
+       (q − x) · (v − x) ≤ 0 for every hull vertex v (the optimality condition of a projection onto
+       a convex set); this settles most pairs;
+    2. the piece's nearest vertex w, accepted by the same test (often the answer for a far point
+       near a corner that is not on the maximising facet);
+    3. the closest of the closest points of the facets visible from q (s_f > 0), one of which holds
        the piece's closest point (trimesh's point-triangle projection), skipping those whose
        bounding sphere is farther than the piece's nearest vertex.
 
@@ -275,12 +276,12 @@ class ConvexPiecesDistance:
         exact = in_facet | (d <= 0.0)
         if not exact.all():
             # Squared distances to every vertex, |q|² − 2 q·v + |v|²: the nearest vertex of a piece
-            # bounds the piece's distance from above (and is fallback 0's candidate).
+            # bounds the piece's distance from above (and is fallback 2's candidate).
             vertex_dist_sq = ((q @ self._vertex_rows.T) * -2.0 + self._vertex_sq).reshape(N, P, -1)
             vertex_dist_sq += np.einsum("nj,nj->n", q, q)[:, None, None]
             nearest = np.argmin(vertex_dist_sq, axis=2)  # (N, P)
             upper = np.sqrt(np.maximum(vertex_dist_sq.min(axis=(1, 2)), 0.0))  # (N,)
-            for fallback in (self._vertex_fallback, self._edge_fallback, self._visible_facets_fallback):
+            for fallback in (self._edge_fallback, self._vertex_fallback, self._visible_facets_fallback):
                 # Only pieces that may be the closest need the exact distance: not those whose lower
                 # bound is at least the smallest exact distance, or above a piece's upper bound.
                 best_exact = np.where(exact, d, np.inf).min(axis=1)
@@ -295,7 +296,7 @@ class ConvexPiecesDistance:
         return d[rows, closest], g[rows, closest]
 
     def _vertex_fallback(self, q, s, facet, nearest, todo, d, g, exact) -> None:
-        """Fallback 0, in place: the piece's nearest vertex v, where it passes the optimality test."""
+        """Fallback 2, in place: the piece's nearest vertex v, where it passes the optimality test."""
         n_k, p_k = np.nonzero(todo)
         vertices = self._vertices[p_k]  # (K, V, 3)
         v = vertices[np.arange(len(n_k)), nearest[n_k, p_k]]
@@ -333,7 +334,7 @@ class ConvexPiecesDistance:
         exact[n_k, p_k] = True
 
     def _visible_facets_fallback(self, q, s, facet, nearest, todo, d, g, exact) -> None:
-        """Fallback 2, in place: the closest of the closest points of the facets visible from q."""
+        """Fallback 3, in place: the closest of the closest points of the facets visible from q."""
         n_k, p_k = np.nonzero(todo)
         # A facet whose bounding sphere is farther than the piece's nearest vertex cannot hold the
         # closest point.
