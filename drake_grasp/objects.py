@@ -56,6 +56,7 @@ from pydrake.multibody.parsing import Parser
 from pydrake.multibody.tree import CalcSpatialInertia
 from scipy.spatial import ConvexHull, QhullError
 
+from drake_grasp import piece_budget
 from drake_grasp.contact import ContactParameters, compliant_proximity_sdf
 
 # --- Assumed numbers (DESIGN §5: "assumed" numbers live here, named) --------------------------
@@ -897,7 +898,7 @@ def _load_checked_mesh(path: Path, label: str, scale: float) -> trimesh.Trimesh:
 
 def _decompose(mesh: trimesh.Trimesh, key: str, max_pieces: int) -> list[str]:
     """Convex pieces of `mesh` as OBJ files (vertices in the mesh frame), cached under `key`."""
-    directory = cache_dir() / "decomposed" / key
+    directory = cache_dir() / "decomposed" / f"{key}-{piece_budget.CACHE_TAG}"
     manifest = directory / "pieces.json"
     if manifest.exists():
         names = json.loads(manifest.read_text())["pieces"]
@@ -919,6 +920,7 @@ def _decompose(mesh: trimesh.Trimesh, key: str, max_pieces: int) -> list[str]:
         for vertices, _ in result:
             piece = trimesh.convex.convex_hull(np.asarray(vertices, float))
             parts.append((piece.vertices, piece.faces))
+    parts = [piece_budget.budgeted_piece(vertices) for vertices, _ in parts]
     # Write into a private directory, then rename it into place: a concurrent process (parallel
     # trials) either sees the complete directory or none, and the first to finish wins.
     directory.parent.mkdir(parents=True, exist_ok=True)
