@@ -180,7 +180,7 @@ def _parser() -> argparse.ArgumentParser:
         description="Starts the camera above the table looking down at the object's nominal place, runs "
         "the visual primitives (depth and principal axis, then sphere/cylinder/box resemblance) and "
         "prints the estimated centre, depth, principal axis and size beside the ground truth, and the "
-        "three resemblances. The object is placed with trial SEED's variation (DESIGN.md 8).",
+        "three resemblances. The object is placed with trial SEED's variation (docs/design.md §4.7).",
     )
     resemble.add_argument("--object", required=True, metavar="NAME|PATH",
                           help="a catalogue object, a primitive (sphere:0.12, cube:0.08, cylinder:0.1x0.3) or a mesh file")

@@ -1,7 +1,7 @@
 """One grasp trial: set up, execute a grasp plan, judge it with the paper's success test, record.
 
 Every method runs through the same simulate-and-judge step (`_execute`), so all are executed by the
-same arm, hand controller and timings, and judged by the same test (DESIGN.md §8): `run_trial` for a
+same arm, hand controller and timings, and judged by the same test (docs/design.md §4.7): `run_trial` for a
 given grasp plan (compliant grasps from ground truth, grasps planned by the Eigengrasp baseline), and
 `run_compliant_trial` for the paper's algorithm, which explores with the wrist camera and decides its
 grasp inside the same simulation (`control.supervisor`). In every trial:

@@ -1,4 +1,4 @@
-"""The Eigengrasp planner baseline (baselines/eigengrasp; DESIGN.md §7)."""
+"""The Eigengrasp planner baseline (baselines/eigengrasp; docs/design.md §4.6)."""
 
 import json
 import math

@@ -1,6 +1,6 @@
 """The depth primitive: keep the object centred while circling it; the image drift gives the depth.
 
-Behaviour (DESIGN §1, paper Sec. 4), per command:
+Behaviour (docs/design.md §2, paper Sec. 4), per command:
 
 * TRACK: a proportional servo turns the camera so that the silhouette's centroid stays at the image
   centre (rotation about the camera's own origin).
