@@ -57,6 +57,7 @@ from pydrake.multibody.tree import CalcSpatialInertia
 from scipy.spatial import ConvexHull, QhullError
 
 from drake_grasp.contact import ContactParameters, compliant_proximity_sdf
+from drake_grasp.geometry import cleaning
 
 # --- Assumed numbers (DESIGN §5: "assumed" numbers live here, named) --------------------------
 
@@ -275,9 +276,12 @@ def _write_atomically(path: Path, text: str) -> None:
 
 
 def _cached_hull_obj(label: str, points: np.ndarray) -> str:
-    """Writes the convex hull of `points` (m) as an OBJ in the cache; returns its absolute path."""
-    hull = trimesh.convex.convex_hull(np.asarray(points, dtype=float))
-    text = _obj_text(hull.vertices, hull.faces)
+    """Writes the convex hull of `points` (m), cleaned for contact (`geometry.cleaning`: no near
+    vertices, no sliver triangles), as an OBJ in the cache; returns its absolute path."""
+    piece = cleaning.clean_convex_points(np.asarray(points, dtype=float))
+    if piece is None or (piece.original_volume - piece.volume) > cleaning.VOLUME_TOLERANCE * piece.original_volume:
+        raise ObjectError(f"{label}: the convex hull is too thin or too small to be a solid for contact")
+    text = _obj_text(piece.vertices, piece.faces)
     digest = hashlib.sha256(text.encode()).hexdigest()[:16]
     directory = cache_dir() / "generated"
     directory.mkdir(exist_ok=True)
@@ -888,8 +892,17 @@ def _load_checked_mesh(path: Path, label: str, scale: float) -> trimesh.Trimesh:
     return mesh
 
 
-def _decompose(mesh: trimesh.Trimesh, key: str, max_pieces: int) -> list[str]:
-    """Convex pieces of `mesh` as OBJ files (vertices in the mesh frame), cached under `key`."""
+CLEANING_VERSION = 1  # part of the cache key of decompositions: bump when cleaning changes
+
+
+def _decompose(mesh: trimesh.Trimesh, key: str, max_pieces: int, label: str = "mesh") -> list[str]:
+    """Convex pieces of `mesh` as OBJ files (vertices in the mesh frame), cached under `key`.
+
+    Every piece is cleaned for contact (:func:`drake_grasp.geometry.cleaning.clean_pieces`: no
+    near-duplicate vertices, no sliver triangles, none thinner than MIN_THICKNESS), removing at most
+    VOLUME_TOLERANCE of the mesh's volume (else ObjectError).
+    """
+    key = f"{key}-c{CLEANING_VERSION}"
     directory = cache_dir() / "decomposed" / key
     manifest = directory / "pieces.json"
     if manifest.exists():
@@ -908,10 +921,12 @@ def _decompose(mesh: trimesh.Trimesh, key: str, max_pieces: int) -> list[str]:
             max_convex_hull=max_pieces,
             seed=0,
         )
-        parts = []
-        for vertices, _ in result:
-            piece = trimesh.convex.convex_hull(np.asarray(vertices, float))
-            parts.append((piece.vertices, piece.faces))
+        parts = [(np.asarray(vertices, float), None) for vertices, _ in result]
+    try:
+        clean, _ = cleaning.clean_pieces([vertices for vertices, _ in parts], float(mesh.volume))
+    except cleaning.CleaningError as error:
+        raise ObjectError(f"{label}: {error}") from None
+    parts = [(piece.vertices, piece.faces) for piece in clean]
     # Write into a private directory, then rename it into place: a concurrent process (parallel
     # trials) either sees the complete directory or none, and the first to finish wins.
     directory.parent.mkdir(parents=True, exist_ok=True)
@@ -1023,7 +1038,7 @@ def object_from_mesh(
     digest = hashlib.sha256(path.read_bytes()).hexdigest()
     settings = f"{scale!r}|{max_pieces}|{COACD_THRESHOLD!r}|{CONVEXITY_TOLERANCE!r}"
     key = hashlib.sha256((digest + settings).encode()).hexdigest()[:20]
-    piece_paths = _decompose(mesh, f"{_model_name(path.stem)}-{key}", max_pieces)
+    piece_paths = _decompose(mesh, f"{_model_name(path.stem)}-{key}", max_pieces, label)
     volume = float(mesh.volume)
     centroid = np.asarray(mesh.center_mass, float)
     unit_inertia = np.asarray(mesh.moment_inertia, float) / float(mesh.mass)
@@ -1076,7 +1091,7 @@ def _piece_from_drake_shape(
             raise ObjectError(f"{label}: non-uniform mesh scale is not supported")
         mesh = _load_checked_mesh(Path(shape.source().path()), label, float(scale[0]))
         key = hashlib.sha256(Path(shape.source().path()).read_bytes()).hexdigest()[:20]
-        paths = _decompose(mesh, f"sdf_mesh-{key}-{float(scale[0])!r}-{max_pieces}", max_pieces)
+        paths = _decompose(mesh, f"sdf_mesh-{key}-{float(scale[0])!r}-{max_pieces}", max_pieces, label)
         return [ShapePiece("convex", (), p, rpy, path) for path in paths]
     raise ObjectError(f"{label}: collision shape {type(shape).__name__} is not supported")
 
