@@ -34,6 +34,7 @@ def _parser() -> argparse.ArgumentParser:
         "the fingers (torque close with breakaway), lifts 10 cm and holds 10 s; prints whether the "
         "object was held and how much it slipped in the hand.",
     )
+    _mesh_options(demo)
     demo.add_argument("--object", required=True, metavar="NAME|PATH",
                       help="a catalogue object (e.g. soccer_ball, bottle_case), a primitive "
                       "(sphere:0.12, cube:0.08, cylinder:0.1x0.3) or a mesh file (OBJ, STL, PLY)")
@@ -63,6 +64,7 @@ def _parser() -> argparse.ArgumentParser:
         "the hand's torque close, lifts 10 cm, holds 10 s and judges success (object off the table, "
         "moved < 1 cm and 10 deg in the hand during the hold).",
     )
+    _mesh_options(trial)
     trial.add_argument("--object", required=True, metavar="NAME|PATH",
                        help="a catalogue object, a primitive (sphere:0.12, cube:0.08, cylinder:0.1x0.3) or a mesh file")
     trial.add_argument("--method", choices=["compliant", "eigengrasp"], default="compliant",
@@ -151,6 +153,7 @@ def _parser() -> argparse.ArgumentParser:
         "autograsp (breakaway) and ranked by eps. Prints the three best grasps (hand pose in the "
         "object frame, finger posture, energy, eps) and the planning time.",
     )
+    _mesh_options(eigengrasp)
     eigengrasp.add_argument("--object", required=True, metavar="NAME|PATH",
                             help="a catalogue object, a primitive (sphere:0.12, cube:0.08, cylinder:0.1x0.3) or a mesh file")
     eigengrasp.add_argument("--steps", default="70000", metavar="N",
@@ -171,6 +174,7 @@ def _parser() -> argparse.ArgumentParser:
         "prints the estimated centre, depth, principal axis and size beside the ground truth, and the "
         "three resemblances. The object is placed with trial SEED's variation (DESIGN.md 8).",
     )
+    _mesh_options(resemble)
     resemble.add_argument("--object", required=True, metavar="NAME|PATH",
                           help="a catalogue object, a primitive (sphere:0.12, cube:0.08, cylinder:0.1x0.3) or a mesh file")
     resemble.add_argument("--nominal", action="store_true", help="place the object without the seed's variation")
@@ -230,6 +234,21 @@ def _run_resemble(args) -> int:
     return 0 if result.estimate.found else 1
 
 
+def _mesh_options(p: argparse.ArgumentParser) -> None:
+    """--scale and --largest-component, for every command that takes --object."""
+    p.add_argument("--scale", type=float, default=1.0, metavar="S",
+                   help="multiply a mesh file's coordinates by S (e.g. 0.001 for a file in millimetres)")
+    p.add_argument("--largest-component", action="store_true",
+                   help="a mesh of separate, non-touching solids: keep the largest (else an error)")
+
+
+def _resolve(args):
+    """The --object of a single-run command, with its mesh options."""
+    from drake_grasp.objects import resolve_user_object
+
+    return resolve_user_object(args.object, scale=args.scale, largest_component=args.largest_component)
+
+
 def _common(p: argparse.ArgumentParser, scenario: bool = True) -> None:
     p.add_argument("--seed", type=int, default=0,
                    help="random seed (default 0; the quasi-static sweep of fig4 is deterministic)")
@@ -285,7 +304,7 @@ def _single_run_inputs(args) -> tuple:
 
     _check_seed(args.seed)
     replay = _writable_file(args.replay, ".html") if args.replay else None
-    return replay, _load_scenario(args), resolve_object(args.object)
+    return replay, _load_scenario(args), _resolve(args)
 
 
 def _writable_file(path: str, suffix: str) -> pathlib.Path:
@@ -410,7 +429,7 @@ def _run_plan_eigengrasp(args) -> int:
 
     _check_seed(args.seed)
     steps = _check_planner_args(args.steps, args.energy)
-    spec = resolve_object(args.object)
+    spec = _resolve(args)
     plan = EigengraspPlanner(spec, args.energy, table=args.table).plan(steps, seed=args.seed)
     record = plan.to_dict()
     if args.out:
@@ -567,12 +586,13 @@ def main(argv: list[str] | None = None) -> int:
     """Entry point of the `drake-grasp` console script; returns the exit code."""
     import warnings
 
-    from drake_grasp.objects import UnstablePoseWarning
+    from drake_grasp.objects import MeshNote, UnstablePoseWarning
 
     args = _parser().parse_args(argv)
 
     def one_line(message, category, *rest, **kwargs):
-        print(f"drake-grasp {args.command}: warning: {message}", file=sys.stderr)
+        kind = "note" if issubclass(category, MeshNote) else "warning"
+        print(f"drake-grasp {args.command}: {kind}: {message}", file=sys.stderr, flush=True)
 
     try:
         with warnings.catch_warnings():
