@@ -107,6 +107,7 @@ def _parser() -> argparse.ArgumentParser:
     )
     fig6.add_argument("--quick", action="store_true", help="4 objects x 3 grasps x 2 trials")
     fig6.add_argument("--trials", type=int, help="trials per object and grasp (default 10)")
+    _mesh_options(fig6)
     fig6.add_argument("--objects", metavar="NAME|PATH,...",
                       help="comma-separated objects instead of the paper's nine (catalogue names, primitives "
                       "such as sphere:0.12, or mesh files): the same study on your own objects")
@@ -126,6 +127,7 @@ def _parser() -> argparse.ArgumentParser:
     )
     fig7.add_argument("--quick", action="store_true", help="2 objects, 2 trials per grasp")
     fig7.add_argument("--trials", type=int, help="executions of each planned grasp (default 10)")
+    _mesh_options(fig7)
     fig7.add_argument("--objects", metavar="NAME|PATH,...",
                       help="comma-separated objects instead of the paper's six (catalogue names, primitives "
                       "or mesh files): compare the two methods on your own objects")
@@ -464,9 +466,12 @@ def _run_eigengrasp_trial(args, replay: pathlib.Path | None) -> int:
         raise UsageError(f"--rank must be >= 1, got {rank}")
     plan_seed = 0 if args.plan_seed is None else args.plan_seed
     _check_seed(plan_seed)
+    from drake_grasp.objects import mesh_options
+
     record, grasp = eigengrasp_trial(args.object, args.seed, energy=energy, steps=steps, plan_seed=plan_seed,
                                      rank=rank, scenario_file=args.scenario or "", scenario_name=args.scenario_name,
-                                     replay_html=str(replay) if replay else None)
+                                     replay_html=str(replay) if replay else None,
+                                     object_options=mesh_options(args.scale, args.largest_component))
     result = dataclasses.asdict(record)
     result["planned_grasp"] = grasp
     summary = record.summary()
@@ -544,19 +549,25 @@ def _scenario_args(args) -> tuple[str, str]:
 
 
 def _objects_arg(args, default: tuple[str, ...]) -> tuple[str, ...]:
-    """--objects as a tuple (each resolved once here, so that a bad one is a one-line error before
-    any worker starts), or `default`."""
-    from drake_grasp.objects import resolve_object
+    """--objects as a tuple (each resolved once here, with the mesh options, so that a bad one is a
+    one-line error before any worker starts), or `default`. `--scale` and `--largest-component`
+    apply to the mesh files among them; given with no mesh file at all, they are an error."""
+    from drake_grasp.objects import is_mesh_file, mesh_options, resolve_user_object
 
-    if args.objects is None:
-        return tuple(default)
-    objects = tuple(o.strip() for o in args.objects.split(",") if o.strip())
-    if not objects:
-        raise UsageError("--objects needs at least one object")
-    if len(set(objects)) != len(objects):
-        raise UsageError(f"--objects names an object twice: {args.objects}")
-    for o in objects:
-        resolve_object(o)
+    objects = tuple(default)
+    if args.objects is not None:
+        objects = tuple(o.strip() for o in args.objects.split(",") if o.strip())
+        if not objects:
+            raise UsageError("--objects needs at least one object")
+        if len(set(objects)) != len(objects):
+            raise UsageError(f"--objects names an object twice: {args.objects}")
+    options = mesh_options(args.scale, args.largest_component)
+    if options and not any(is_mesh_file(o) for o in objects):
+        raise UsageError(f"{'--scale' if 'scale' in options else '--largest-component'} applies to mesh files "
+                         "only (OBJ, STL, PLY), and --objects names none")
+    if args.objects is not None:
+        for o in objects:
+            resolve_user_object(o, **(options if is_mesh_file(o) else {}))
     return objects
 
 
@@ -568,7 +579,8 @@ def _run_fig6(args) -> int:
     scenario_file, scenario_name = _scenario_args(args)
     objects = _objects_arg(args, fig6.QUICK_OBJECTS if args.quick else PAPER_OBJECTS)
     trials = args.trials or (2 if args.quick else 10)
-    config = fig6.Fig6Config(objects=tuple(objects), trials=trials, seed=args.seed, method=args.method)
+    config = fig6.Fig6Config(objects=tuple(objects), trials=trials, seed=args.seed, method=args.method,
+                             scale=args.scale, largest_component=args.largest_component)
     out = _check_out_dir(args.out or args.out_default)
     start = time.perf_counter()
     with executor:
@@ -597,7 +609,8 @@ def _run_fig7(args) -> int:
     config = fig7.Fig7Config(objects=_objects_arg(args, fig7.QUICK_OBJECTS if args.quick else fig7.OBJECTS),
                              trials=trials,
                              seed=args.seed, steps=args.steps, energy=args.energy,
-                             compliant_method=args.compliant_method)
+                             compliant_method=args.compliant_method, scale=args.scale,
+                             largest_component=args.largest_component)
     out = _check_out_dir(args.out or args.out_default)
     start = time.perf_counter()
     with executor:

@@ -1350,11 +1350,30 @@ def resolve_user_object(
     if scale == 1.0 and not largest_component:
         return resolve_object(text, **kw)
     options = "--scale" if scale != 1.0 else "--largest-component"
-    if text in _PAPER_FACTORIES or ":" in text or Path(text).suffix.lower() in (".sdf", ".urdf"):
+    if not is_mesh_file(text):
         raise ObjectError(f"{text}: {options} applies to mesh files only (OBJ, STL, PLY)")
     if not (scale > 0.0 and math.isfinite(scale)):
         raise ObjectError(f"--scale must be positive, got {scale!r}")
     return resolve_object(text, scale=scale, largest_component=largest_component, **kw)
+
+
+def is_mesh_file(name_or_path: str) -> bool:
+    """Whether an object argument names a mesh file (what `--scale` applies to), not a catalogue
+    object, a primitive or an SDF/URDF model."""
+    text = str(name_or_path).strip()
+    return not (text in _PAPER_FACTORIES or ":" in text or Path(text).suffix.lower() in (".sdf", ".urdf"))
+
+
+def mesh_options(scale: float = 1.0, largest_component: bool = False) -> dict:
+    """The mesh options that differ from their defaults, as keyword arguments of
+    :func:`resolve_user_object` (plain data: a sweep's tasks carry them to its workers, and a
+    record's fingerprint includes them)."""
+    options = {}
+    if scale != 1.0:
+        options["scale"] = float(scale)
+    if largest_component:
+        options["largest_component"] = True
+    return options
 
 
 def _object_from_file(path: Path, label: str, kw: dict) -> ObjectSpec:

@@ -34,12 +34,23 @@ class Fig6Config:
         trials: trials per object and grasp (the paper: 10).
         seed: trial i uses seed + i.
         method: "compliant" (camera estimates, the paper's algorithm) or "oracle" (ground truth).
+        scale, largest_component: options of the mesh files among the objects (`--scale`,
+            `--largest-component`).
     """
 
     objects: tuple[str, ...]
     trials: int = 10
     seed: int = 0
     method: str = "compliant"
+    scale: float = 1.0
+    largest_component: bool = False
+
+    def object_options(self, obj: str) -> dict:
+        """The keyword arguments that resolve `obj` as this sweep does (`--scale`,
+        `--largest-component` for a mesh file; none for a catalogue object or a primitive)."""
+        from drake_grasp.objects import is_mesh_file, mesh_options
+
+        return mesh_options(self.scale, self.largest_component) if is_mesh_file(obj) else {}
 
     def __post_init__(self):
         if self.trials < 1:
@@ -52,7 +63,7 @@ def trial_specs(config: Fig6Config, scenario_file: str = "", scenario_name: str 
     """The sweep as plain TrialSpecs."""
     from drake_grasp.experiments.runner import TrialSpec
 
-    return [TrialSpec(o, config.method, g, config.seed + i, scenario_file, scenario_name)
+    return [TrialSpec(o, config.method, g, config.seed + i, scenario_file, scenario_name, **config.object_options(o))
             for o in config.objects for g in GRASPS for i in range(config.trials)]
 
 

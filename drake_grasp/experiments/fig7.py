@@ -43,6 +43,7 @@ class Fig7Config:
         energy: "contact" or "contact-quality".
         compliant_method: "compliant" (camera) or "oracle" (ground-truth estimates) for the
             compliance-centric side, when Fig. 6's results are not reused.
+        scale, largest_component: options of the mesh files among the objects.
     """
 
     objects: tuple[str, ...] = OBJECTS
@@ -51,6 +52,15 @@ class Fig7Config:
     steps: int = 70_000
     energy: str = "contact-quality"
     compliant_method: str = "compliant"
+    scale: float = 1.0
+    largest_component: bool = False
+
+    def object_options(self, obj: str) -> dict:
+        """The keyword arguments that resolve `obj` as this comparison does (`--scale`,
+        `--largest-component` for a mesh file; none for anything else)."""
+        from drake_grasp.objects import is_mesh_file, mesh_options
+
+        return mesh_options(self.scale, self.largest_component) if is_mesh_file(obj) else {}
 
     @property
     def plan_tag(self) -> str:
@@ -71,25 +81,28 @@ def plan_path(out_dir: pathlib.Path, obj: str, config: Fig7Config, fingerprint: 
         f"_seed{config.seed}_table_{fingerprint}.json"
 
 
-def plan_fingerprint(obj: str, scenario_file: str = "", scenario_name: str = "default") -> str:
-    """The fingerprint of a plan's inputs other than the planner's settings: the object's content and
-    the scenario (whose arm decides which grasps are reachable)."""
+def plan_fingerprint(obj: str, scenario_file: str = "", scenario_name: str = "default",
+                     object_options: dict | None = None) -> str:
+    """The fingerprint of a plan's inputs other than the planner's settings: the object's content (with
+    its mesh options) and the scenario (whose arm decides which grasps are reachable)."""
     from drake_grasp.experiments.fingerprint import digest, object_fingerprint, scenario_fingerprint
 
-    return digest("plan", object_fingerprint(obj), scenario_fingerprint(scenario_file, scenario_name))
+    return digest("plan", object_fingerprint(obj, **(object_options or {})),
+                  scenario_fingerprint(scenario_file, scenario_name))
 
 
 def plan_object(obj: str, config: Fig7Config, scenario_file: str = "", scenario_name: str = "default"):
     """Plans one object (a worker task: plain data in and out); returns (plan dict with the grasps to
     execute under "executed": the three best the arm can reach, planning wall time in s)."""
     from baselines.eigengrasp.planner import plan_eigengrasp
-    from drake_grasp.objects import pose_warnings_announced, resolve_object
+    from drake_grasp.objects import pose_warnings_announced, resolve_user_object
 
     start = time.perf_counter()
     with pose_warnings_announced():
-        plan = plan_eigengrasp(resolve_object(obj), max_steps=config.steps, seed=config.seed,
+        options = config.object_options(obj)
+        plan = plan_eigengrasp(resolve_user_object(obj, **options), max_steps=config.steps, seed=config.seed,
                                energy_name=config.energy, table=True).to_dict()
-        plan["executed"] = reachable_grasps(plan, obj, scenario_file, scenario_name)
+        plan["executed"] = reachable_grasps(plan, obj, scenario_file, scenario_name, object_options=options)
     return plan, time.perf_counter() - start
 
 
@@ -101,7 +114,8 @@ def ensure_plans(out_dir: pathlib.Path, config: Fig7Config, executor, progress=s
 
     plans = {}
     todo = []
-    paths = {obj: plan_path(out_dir, obj, config, plan_fingerprint(obj, scenario_file, scenario_name))
+    paths = {obj: plan_path(out_dir, obj, config, plan_fingerprint(obj, scenario_file, scenario_name,
+                                                                   config.object_options(obj)))
              for obj in config.objects}
     for obj in config.objects:
         plan = _read_plan(paths[obj], progress)
@@ -139,7 +153,7 @@ def _read_plan(path: pathlib.Path, progress) -> dict | None:
 
 
 def reachable_grasps(plan: dict, obj: str, scenario_file: str = "", scenario_name: str = "default",
-                     count: int = 3) -> list[dict]:
+                     count: int = 3, object_options: dict | None = None) -> list[dict]:
     """The `count` best of the plan's ranked candidates that the WAM can execute.
 
     The planner moves a free hand (docs/design.md §4.6) and knows nothing of the arm: some of its best
@@ -153,11 +167,11 @@ def reachable_grasps(plan: dict, obj: str, scenario_file: str = "", scenario_nam
 
     from drake_grasp.control.arm_motion import ArmKinematics, ReachError
     from drake_grasp.grasps import planned_grasp
-    from drake_grasp.objects import resolve_object
+    from drake_grasp.objects import resolve_user_object
     from drake_grasp.station import DEFAULT_SCENARIO_FILE, MakeStation, load_scenario
 
     scenario = load_scenario(scenario_file or DEFAULT_SCENARIO_FILE, scenario_name)
-    station = MakeStation(scenario, resolve_object(obj), camera=False)
+    station = MakeStation(scenario, resolve_user_object(obj, **(object_options or {})), camera=False)
     kinematics = ArmKinematics(station.plant, station.wam)
     X_WO = station.X_WO_nominal()
     q_start = np.asarray(scenario.protocol.start_configuration, float)
@@ -177,7 +191,7 @@ def reachable_grasps(plan: dict, obj: str, scenario_file: str = "", scenario_nam
 
 def eigengrasp_trial(obj: str, seed: int, *, energy: str = "contact-quality", steps: int = 70_000,
                      plan_seed: int = 0, rank: int = 1, scenario_file: str = "", scenario_name: str = "default",
-                     replay_html: str | None = None):
+                     replay_html: str | None = None, object_options: dict | None = None):
     """One trial of the compliance-agnostic method, as Fig. 7 runs it: plan with the Eigengrasp planner
     (table loaded), execute its `rank`-th best grasp that the WAM can reach, judge with the same
     runner, seeds and success test as the compliant grasps.
@@ -191,14 +205,14 @@ def eigengrasp_trial(obj: str, seed: int, *, energy: str = "contact-quality", st
     from baselines.eigengrasp.planner import plan_eigengrasp
     from drake_grasp.control.arm_motion import UNREACHABLE
     from drake_grasp.grasps import planned_grasp
-    from drake_grasp.objects import resolve_object
+    from drake_grasp.objects import resolve_user_object
     from drake_grasp.station import DEFAULT_SCENARIO_FILE, load_scenario
     from drake_grasp.trial import TrialRecord, run_trial
 
-    spec = resolve_object(obj)
+    spec = resolve_user_object(obj, **(object_options or {}))
     scenario = load_scenario(scenario_file or DEFAULT_SCENARIO_FILE, scenario_name)
     plan = plan_eigengrasp(spec, max_steps=steps, seed=plan_seed, energy_name=energy, table=True).to_dict()
-    reachable = reachable_grasps(plan, obj, scenario_file, scenario_name, count=rank)
+    reachable = reachable_grasps(plan, obj, scenario_file, scenario_name, count=rank, object_options=object_options)
     label = f"{energy}/{steps}/seed{plan_seed}#{rank}"
     if len(reachable) < rank:
         return TrialRecord(object=spec.name, method="eigengrasp", grasp=label, seed=seed, success=False,
@@ -222,7 +236,7 @@ def eigengrasp_specs(plans: dict, config: Fig7Config, scenario_file="", scenario
                        "epsilon": grasp["epsilon"], "energy": config.energy, "planner_rank": grasp["planner_rank"]}
             for i in range(config.trials):
                 specs.append(TrialSpec(obj, "eigengrasp", f"{config.plan_tag}#{rank}", config.seed + i,
-                                       scenario_file, scenario_name, planned))
+                                       scenario_file, scenario_name, planned, **config.object_options(obj)))
     return specs
 
 
@@ -328,7 +342,8 @@ def run_comparison(config: Fig7Config, out_dir: pathlib.Path, fig6_dir: pathlib.
         eigen_rows = run_trials(eigengrasp_specs(plans, config, scenario_file, scenario_name), out_dir / "fig7.csv",
                                 label="fig7", executor=executor)
         f6_config = fig6.Fig6Config(objects=config.objects, trials=config.trials, seed=config.seed,
-                                    method=config.compliant_method)
+                                    method=config.compliant_method, scale=config.scale,
+                                    largest_component=config.largest_component)
         f6_specs = fig6.trial_specs(f6_config, scenario_file, scenario_name)
         f6_prints = fingerprints(f6_specs)
         # Fig. 6's records of the same inputs (same fingerprints) are reused; its file is only read.

@@ -47,9 +47,10 @@ def fingerprints(specs: list["TrialSpec"]) -> list[str]:
         where = (s.scenario_file, s.scenario_name)
         if where not in scenarios:
             scenarios[where] = scenario_fingerprint(*where)
-        if s.object not in objects:
-            objects[s.object] = object_fingerprint(s.object)
-        out.append(trial_fingerprint(s, scenarios[where], objects[s.object]))
+        which = (s.object, s.scale, s.largest_component)
+        if which not in objects:
+            objects[which] = object_fingerprint(s.object, **s.object_options())
+        out.append(trial_fingerprint(s, scenarios[where], objects[which]))
     return out
 
 
@@ -70,6 +71,7 @@ class TrialSpec:
         seed: the trial's seed (its variation; shared by every method).
         scenario_file, scenario_name: the station scenario.
         planned: for planned grasps: {"X_OH": 4x4 list, "joint_angles": 8 floats}.
+        scale, largest_component: a mesh file's options (`objects.resolve_user_object`).
     """
 
     object: str
@@ -79,6 +81,14 @@ class TrialSpec:
     scenario_file: str = ""
     scenario_name: str = "default"
     planned: dict | None = None
+    scale: float = 1.0
+    largest_component: bool = False
+
+    def object_options(self) -> dict:
+        """The mesh options that differ from their defaults (keyword arguments)."""
+        from drake_grasp.objects import mesh_options
+
+        return mesh_options(self.scale, self.largest_component)
 
 
 def run_one(spec: TrialSpec) -> dict:
@@ -91,12 +101,12 @@ def run_one(spec: TrialSpec) -> dict:
 
 def _run_one(spec: TrialSpec) -> dict:
     from drake_grasp.grasps import oracle_estimate, plan_compliant_grasp, planned_grasp
-    from drake_grasp.objects import resolve_object
+    from drake_grasp.objects import resolve_user_object
     from drake_grasp.station import DEFAULT_SCENARIO_FILE, load_scenario
     from drake_grasp.trial import run_compliant_trial, run_trial
 
     scenario = load_scenario(spec.scenario_file or DEFAULT_SCENARIO_FILE, spec.scenario_name)
-    obj = resolve_object(spec.object)
+    obj = resolve_user_object(spec.object, **spec.object_options())
     if spec.method == "compliant":
         record = run_compliant_trial(scenario, obj, seed=spec.seed, grasp=spec.grasp)
         return _row(spec, record, {"resemblance": record.resemblances, "chosen": record.chosen_grasp,
