@@ -1,7 +1,11 @@
 """Where the project's data lives, and how Drake finds it.
 
-Models ship in ``models/`` at the top of the repository with a ``package.xml`` named ``drake_grasp``,
-so they are loaded through ``package://drake_grasp/...`` URLs (never downloaded at run time).
+The hand, arm and table models live in ``models/`` at the top of the repository (with a
+``package.xml`` named ``drake_grasp``) and the scenario files in ``diagrams/``. The package reaches
+both through ``drake_grasp/models`` and ``drake_grasp/diagrams``, links to those folders, so that the
+same paths work in a source checkout, an editable install and an installed wheel (the wheel carries
+the folders' files as package data, see pyproject.toml). Models are loaded through
+``package://drake_grasp/...`` URLs and never downloaded at run time.
 """
 
 from __future__ import annotations
@@ -10,9 +14,9 @@ import pathlib
 
 from pydrake.multibody.parsing import PackageMap, Parser
 
-REPO_DIR = pathlib.Path(__file__).resolve().parent.parent
-MODELS_DIR = REPO_DIR / "models"
-DIAGRAMS_DIR = REPO_DIR / "diagrams"
+PACKAGE_DIR = pathlib.Path(__file__).resolve().parent
+MODELS_DIR = pathlib.Path(__file__).parent / "models"
+DIAGRAMS_DIR = pathlib.Path(__file__).parent / "diagrams"
 PACKAGE_NAME = "drake_grasp"
 
 
@@ -20,5 +24,5 @@ def RegisterPackage(parser: Parser) -> Parser:
     """Makes ``package://drake_grasp/...`` resolve to models/ for `parser`; returns `parser`."""
     package_map: PackageMap = parser.package_map()
     if not package_map.Contains(PACKAGE_NAME):
-        package_map.Add(PACKAGE_NAME, str(MODELS_DIR))
+        package_map.Add(PACKAGE_NAME, str(MODELS_DIR.resolve()))
     return parser
