@@ -208,6 +208,14 @@ def plot(rows: list[NovelRow], out_dir: pathlib.Path) -> list[pathlib.Path]:
     return paths
 
 
+def ensure_objects(directory: pathlib.Path, count: int, seed: int) -> list[dict]:
+    """The manifest entries ({"file", "class", ...}) of `count` novel objects of generator seed `seed`
+    in `directory`: generated there once, reused on a rerun (the generator is deterministic)."""
+    from drake_grasp.geometry.novel import generate_objects  # TODO(merge): the generator's API
+
+    return generate_objects(count=count, seed=seed, out_dir=directory)
+
+
 def run_study(config: NovelConfig, out_dir: pathlib.Path, objects: list[dict], executor, scenario_file: str = "",
               scenario_name: str = "default", progress=sys.stderr):
     """Runs (or resumes) both methods on `objects` (manifest entries: {"file": path, "class": name}) and

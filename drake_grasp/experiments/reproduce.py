@@ -1,4 +1,5 @@
-"""The whole paper in one command: Fig. 4, Fig. 6 and Fig. 7, and a report of claim against result.
+"""The whole paper in one command: Fig. 4, Fig. 6 and Fig. 7, a report of claim against result, and
+beyond the paper, both methods on novel objects.
 
 `run` runs (or resumes) the three experiments into one output folder and writes ``report.md``: for each
 claim of the paper, the paper's number or statement, ours, and whether ours agrees. The verdicts are
@@ -12,7 +13,7 @@ import time
 
 import numpy as np
 
-from drake_grasp.experiments import fig4, fig6, fig7
+from drake_grasp.experiments import fig4, fig6, fig7, novel
 
 # Written by scripts/bench_scaling.py; quoted in the report when present.
 SCALING_FILE = pathlib.Path(__file__).resolve().parents[2] / "docs" / "results" / "scaling.json"
@@ -150,7 +151,7 @@ def scaling_lines(path: pathlib.Path = SCALING_FILE) -> list[str]:
 
 def write_report(path: pathlib.Path, claims: list[Claim], wall_time: float, quick: bool, energy: str,
                  figures: list[pathlib.Path], resumed: dict | None = None, executor: str = "local",
-                 scaling_file: pathlib.Path = SCALING_FILE) -> None:
+                 scaling_file: pathlib.Path = SCALING_FILE, novel_lines: list[str] | None = None) -> None:
     agree = sum(c.agrees == "yes" for c in claims)
     reuse = ""
     if resumed:
@@ -168,6 +169,11 @@ def write_report(path: pathlib.Path, claims: list[Claim], wall_time: float, quic
     lines += ["", "Figures: " + ", ".join(f"[{p.name}]({p.parent.name}/{p.name})" for p in figures), ""]
     if quick:
         lines += ["A quick run uses few sizes, objects and trials: its verdicts are indicative only.", ""]
+    if novel_lines:
+        lines += ["## Beyond the paper: novel objects", "",
+                  "Both methods on generated objects neither has seen (`drake-grasp novel`; details in "
+                  "[novel/summary.md](novel/summary.md)), through the runner, seeds and success test of Fig. 6 "
+                  "and Fig. 7.", "", *novel_lines, ""]
     lines += scaling_lines(scaling_file)
     tmp = path.with_suffix(".tmp")
     tmp.write_text("\n".join(lines))
@@ -198,10 +204,15 @@ def run(out_dir: pathlib.Path, quick: bool, workers: int | None = None, seed: in
     comparison, f7, _ = fig7.run_comparison(config7, out_dir / "fig7", out_dir / "fig6", executor=executor)
     figures += f7
     claims = fig4_claims(summaries4) + fig6_claims(stats6) + fig7_claims(comparison)
+    novel_config = novel.NovelConfig.quick(seed=seed, energy=energy) if quick else novel.NovelConfig(
+        seed=seed, energy=energy)
+    novel_objects = novel.ensure_objects(out_dir / "novel" / "objects", novel_config.count, novel_config.object_seed)
+    _, novel_figures, novel_lines = novel.run_study(novel_config, out_dir / "novel", novel_objects, executor)
+    figures += novel_figures
     wall = time.perf_counter() - start
     report = out_dir / "report.md"
     write_report(report, claims, wall, quick, energy, figures, {k: f"{v} rows" for k, v in resumed.items() if v},
-                 executor.describe())
+                 executor.describe(), novel_lines=novel_lines)
     return report, claims, wall
 
 
