@@ -1,16 +1,22 @@
 """The `drake-grasp` command.
 
-Every subcommand prints a one-line summary (or one JSON object with --json) and takes --seed and
---out. Bad input (an unknown object, a broken mesh, a malformed scenario, a number out of range) is
-reported as one line on stderr with exit code 2, never a traceback.
+Every subcommand prints a one-line summary (or one JSON object with --json) and takes --out (and
+--seed where a run has randomness). Exit codes are a contract: 2 for bad input (an unknown object, a
+broken mesh, a malformed scenario, a number out of range, an output path that cannot be written, a
+results folder another run holds), reported as one line on stderr before any work starts, never a
+traceback; 1 for a run that could not be carried out; 130 for Ctrl-C and 143 for SIGTERM (both stop
+the run's workers).
 """
 
 import argparse
 import dataclasses
 import json
 import math
+import os
 import pathlib
+import signal
 import sys
+import threading
 import time
 
 from drake_grasp.hand import ComplianceMode
@@ -18,6 +24,11 @@ from drake_grasp.hand import ComplianceMode
 
 class UsageError(ValueError):
     """Bad input from the command line: reported in one line, exit code 2."""
+
+
+class Terminated(KeyboardInterrupt):
+    """SIGTERM, raised in the main thread so that it unwinds like Ctrl-C (workers stopped, locks
+    released); exit code 143."""
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -53,7 +64,7 @@ def _parser() -> argparse.ArgumentParser:
     )
     fig4.add_argument("--quick", action="store_true", help="9 sizes x 7 errors instead of 27 x 21")
     _executor_args(fig4)
-    _common(fig4, scenario=False)
+    _common(fig4, scenario=False, seed=False)
     fig4.set_defaults(run=_run_fig4, out_default="out/fig4")
 
     trial = sub.add_parser(
@@ -216,9 +227,9 @@ def _run_resemble(args) -> int:
     return 0 if result.estimate.found else 1
 
 
-def _common(p: argparse.ArgumentParser, scenario: bool = True) -> None:
-    p.add_argument("--seed", type=int, default=0,
-                   help="random seed (default 0; the quasi-static sweep of fig4 is deterministic)")
+def _common(p: argparse.ArgumentParser, scenario: bool = True, seed: bool = True) -> None:
+    if seed:  # (fig4's quasi-static sweep is deterministic: it has no seed)
+        p.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
     p.add_argument("--out", metavar="DIR", help="directory for result files")
     p.add_argument("--json", action="store_true", help="print one JSON object instead of a line")
     if scenario:
@@ -245,23 +256,58 @@ def _load_scenario(args):
 
 
 def _emit(args, record: dict, filename: str, summary: str, replay: pathlib.Path | None) -> None:
-    """Writes a single run's record to --out (atomically) and prints it: one JSON object with
-    --json, else the summary (and where the replay went)."""
+    """Prints a single run's record (one JSON object with --json, else the summary and where the
+    replay went), then writes it to --out (atomically): if writing fails, the result is still shown.
+
+    Raises:
+        RuntimeError: (one line, exit code 1) if the record could not be written.
+    """
+    if args.json:
+        print(json.dumps(_jsonable(record)), flush=True)
+    else:
+        print(summary, flush=True)
+        if replay:
+            print(f"replay: {replay}", flush=True)
     if args.out:
-        out = pathlib.Path(args.out)
+        _save_record(pathlib.Path(args.out), filename, record)
+
+
+def _save_record(out: pathlib.Path, filename: str, record: dict) -> None:
+    """Writes a record as JSON to out/filename; RuntimeError (one line) if that fails."""
+    try:
         out.mkdir(parents=True, exist_ok=True)
         _write_json_atomically(out / filename, record)
-    if args.json:
-        print(json.dumps(_jsonable(record)))
-    else:
-        print(summary)
-        if replay:
-            print(f"replay: {replay}")
+    except OSError as e:
+        raise RuntimeError(f"could not write {out / filename}: {e.strerror or e}") from None
 
 
-def _check_seed(seed: int) -> None:
+def _check_out_dir(path: str | os.PathLike, option: str = "--out") -> pathlib.Path:
+    """An output folder that can be written: it is a folder, or can be created as one (its nearest
+    existing parent is a writable folder). UsageError (one line) otherwise. Nothing is created."""
+    p = pathlib.Path(path)
+    if p.exists():
+        if not p.is_dir():
+            raise UsageError(f"{option} {path}: exists and is not a directory")
+        if not os.access(p, os.W_OK | os.X_OK):
+            raise UsageError(f"{option} {path}: directory is not writable")
+        return p
+    parent = p.absolute().parent
+    while not parent.exists():
+        parent = parent.parent
+    if not parent.is_dir():
+        raise UsageError(f"{option} {path}: {parent} is not a directory")
+    if not os.access(parent, os.W_OK | os.X_OK):
+        raise UsageError(f"{option} {path}: cannot create it ({parent} is not writable)")
+    return p
+
+
+def _check_seed(seed: int, trials: int = 1) -> None:
+    """A seed in [0, 2^32); a sweep of `trials` trials uses seed .. seed + trials - 1, all in range."""
     if not 0 <= seed < 2**32:
         raise UsageError(f"--seed must be in [0, 2^32), got {seed}")
+    if seed + trials - 1 >= 2**32:
+        raise UsageError(f"--seed {seed} with {trials} trials uses seeds up to {seed + trials - 1}, past "
+                         f"2^32 - 1; use --seed <= {2**32 - trials}")
 
 
 def _single_run_inputs(args) -> tuple:
@@ -270,16 +316,25 @@ def _single_run_inputs(args) -> tuple:
     from drake_grasp.objects import resolve_object
 
     _check_seed(args.seed)
+    if args.out:
+        _check_out_dir(args.out)
     replay = _writable_file(args.replay, ".html") if args.replay else None
     return replay, _load_scenario(args), resolve_object(args.object)
 
 
 def _writable_file(path: str, suffix: str) -> pathlib.Path:
+    """A file name that can be written (--replay): the right suffix, not a folder, in a writable
+    folder that exists, and writable if it exists. UsageError (one line) otherwise."""
     p = pathlib.Path(path)
     if p.suffix.lower() != suffix:
         raise UsageError(f"{path}: expected a {suffix} file name")
-    if not p.parent.exists():
+    parent = p.absolute().parent
+    if not parent.is_dir():
         raise UsageError(f"{path}: directory {p.parent} does not exist")
+    if p.is_dir():
+        raise UsageError(f"{path}: is a directory")
+    if not os.access(parent, os.W_OK | os.X_OK) or (p.exists() and not os.access(p, os.W_OK)):
+        raise UsageError(f"{path}: cannot be written (permission denied)")
     return p
 
 
@@ -297,15 +352,16 @@ def _run_demo(args) -> int:
 
 def _run_fig4(args) -> int:
     from drake_grasp.experiments import fig4
+    from drake_grasp.experiments.lock import results_lock
 
     executor = _check_sweep_args(args)
     config = fig4.Fig4Config.quick() if args.quick else fig4.Fig4Config.full()
-    out = pathlib.Path(args.out or args.out_default)
+    out = _check_out_dir(args.out or args.out_default)
     start = time.perf_counter()
-    with executor:
+    with results_lock(out), executor:
         rows = fig4.run_fig4(config, out, executor=executor)
-    summaries = fig4.summarise(rows)
-    figures = fig4.plot(summaries, out)
+        summaries = fig4.summarise(rows)
+        figures = fig4.plot(summaries, out)
     lines = fig4.summary_lines(summaries, rows)
     wall = time.perf_counter() - start
     if args.json:
@@ -390,23 +446,29 @@ def _run_eigengrasp_trial(args, replay: pathlib.Path | None) -> int:
 
 
 def _run_plan_eigengrasp(args) -> int:
-    from baselines.eigengrasp.annealing import K0
     from baselines.eigengrasp.planner import EigengraspPlanner
     from drake_grasp.objects import resolve_object
 
     _check_seed(args.seed)
     steps = _check_planner_args(args.steps, args.energy)
+    if args.out:
+        _check_out_dir(args.out)
     spec = resolve_object(args.object)
     plan = EigengraspPlanner(spec, args.energy, table=args.table).plan(steps, seed=args.seed)
     record = plan.to_dict()
-    if args.out:
-        out = pathlib.Path(args.out)
-        out.mkdir(parents=True, exist_ok=True)
-        _write_json_atomically(out / f"eigengrasp_{spec.name}_{args.energy}_{args.seed}.json", record)
     if args.json:
-        print(json.dumps(_jsonable(record)))
-        return 0
-    print(f"plan-eigengrasp {spec.name}: {len(plan.grasps)} grasps, energy {args.energy}, "
+        print(json.dumps(_jsonable(record)), flush=True)
+    else:
+        _print_plan(plan, args.energy, steps)
+    if args.out:
+        _save_record(pathlib.Path(args.out), f"eigengrasp_{spec.name}_{args.energy}_{args.seed}.json", record)
+    return 0
+
+
+def _print_plan(plan, energy: str, steps: int) -> None:
+    from baselines.eigengrasp.annealing import K0
+
+    print(f"plan-eigengrasp {plan.object_name}: {len(plan.grasps)} grasps, energy {energy}, "
           f"{plan.iterations} iterations (k {K0}..{steps}) at {plan.steps_per_second:.0f} steps/s")
     for i, g in enumerate(plan.grasps, start=1):
         d = g.to_dict()
@@ -416,8 +478,7 @@ def _run_plan_eigengrasp(args) -> int:
               f"posture spread {q[0]:.1f} proximal {q[2]:.1f} distal {q[5]:.1f} deg; "
               f"energy {g.energy:.2f}; eps {g.epsilon:.4f} after autograsp; fingers touching {g.fingers_touching}")
     print(f"planning time {plan.planning_time:.1f} s (annealing {plan.annealing_time:.1f} s, "
-          f"autograsp {plan.autograsp_time:.1f} s)")
-    return 0
+          f"autograsp {plan.autograsp_time:.1f} s)", flush=True)
 
 
 def _check_sweep_args(args):
@@ -425,11 +486,12 @@ def _check_sweep_args(args):
     (a context manager: Ray, if started, is shut down on leaving it)."""
     from drake_grasp.experiments.executors import EXECUTORS, make_executor
 
-    _check_seed(args.seed)
     if args.workers is not None and args.workers < 1:
         raise UsageError(f"--workers must be >= 1, got {args.workers}")
     if getattr(args, "trials", None) is not None and args.trials < 1:
         raise UsageError(f"--trials must be >= 1, got {args.trials}")
+    if hasattr(args, "seed"):
+        _check_seed(args.seed, getattr(args, "trials", None) or (2 if args.quick else 10))
     if args.executor not in EXECUTORS:
         raise UsageError(f"unknown --executor {args.executor!r} (choose from {', '.join(EXECUTORS)})")
     if args.ray_address is not None and args.executor != "ray":
@@ -438,6 +500,11 @@ def _check_sweep_args(args):
         raise UsageError("--workers does not apply with --ray-address (the cluster's CPUs decide)")
     if args.ray_address is not None and not args.ray_address.strip():
         raise UsageError("--ray-address is empty")
+    cores = os.cpu_count() or 1
+    if args.workers is not None and args.workers > cores:
+        print(f"drake-grasp {args.command}: note: --workers {args.workers} is more than this machine's {cores} "
+              f"cores; using {cores}", file=sys.stderr)
+        args.workers = cores
     return make_executor(args.executor, args.workers, args.ray_address)
 
 
@@ -472,7 +539,7 @@ def _run_fig6(args) -> int:
     objects = _objects_arg(args, fig6.QUICK_OBJECTS if args.quick else PAPER_OBJECTS)
     trials = args.trials or (2 if args.quick else 10)
     config = fig6.Fig6Config(objects=tuple(objects), trials=trials, seed=args.seed, method=args.method)
-    out = pathlib.Path(args.out or args.out_default)
+    out = _check_out_dir(args.out or args.out_default)
     start = time.perf_counter()
     with executor:
         _, figures, lines, count = fig6.run_sweep(config, out, scenario_file=scenario_file,
@@ -493,15 +560,18 @@ def _run_fig7(args) -> int:
     executor = _check_sweep_args(args)
     _check_planner_args(str(args.steps), args.energy)
     scenario_file, scenario_name = _scenario_args(args)
+    fig6_dir = pathlib.Path(args.fig6)
+    if fig6_dir.exists() and not fig6_dir.is_dir():
+        raise UsageError(f"--fig6 {args.fig6}: exists and is not a directory")
     trials = args.trials or (2 if args.quick else 10)
     config = fig7.Fig7Config(objects=_objects_arg(args, fig7.QUICK_OBJECTS if args.quick else fig7.OBJECTS),
                              trials=trials,
                              seed=args.seed, steps=args.steps, energy=args.energy,
                              compliant_method=args.compliant_method)
-    out = pathlib.Path(args.out or args.out_default)
+    out = _check_out_dir(args.out or args.out_default)
     start = time.perf_counter()
     with executor:
-        comparison, figures, lines = fig7.run_comparison(config, out, pathlib.Path(args.fig6),
+        comparison, figures, lines = fig7.run_comparison(config, out, fig6_dir,
                                                          scenario_file=scenario_file, scenario_name=scenario_name,
                                                          executor=executor)
     wall = time.perf_counter() - start
@@ -548,7 +618,7 @@ def _run_reproduce(args) -> int:
     from drake_grasp.experiments import reproduce
 
     executor = _check_sweep_args(args)
-    out = pathlib.Path(args.out or ("out/reproduce-quick" if args.quick else "out/reproduce"))
+    out = _check_out_dir(args.out or ("out/reproduce-quick" if args.quick else "out/reproduce"))
     with executor:
         report, claims, wall = reproduce.run(out, args.quick, seed=args.seed, energy=args.energy, executor=executor)
     if args.json:
@@ -573,9 +643,9 @@ def _jsonable(value):
 
 
 def _write_json_atomically(path: pathlib.Path, record: dict) -> None:
-    tmp = path.with_suffix(path.suffix + ".tmp")
-    tmp.write_text(json.dumps(_jsonable(record), indent=2) + "\n")
-    tmp.replace(path)
+    from drake_grasp.experiments.results import write_atomically
+
+    write_atomically(path, json.dumps(_jsonable(record), indent=2) + "\n")
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -590,7 +660,7 @@ def main(argv: list[str] | None = None) -> int:
         print(f"drake-grasp {args.command}: warning: {message}", file=sys.stderr)
 
     try:
-        with warnings.catch_warnings():
+        with warnings.catch_warnings(), _sigterm_as_interrupt():
             warnings.simplefilter("once", UnstablePoseWarning)
             warnings.showwarning = one_line
             return args.run(args)
@@ -604,9 +674,28 @@ def main(argv: list[str] | None = None) -> int:
         message = str(e).strip().splitlines()[0] if str(e).strip() else type(e).__name__
         print(f"drake-grasp {args.command}: failed: {message}", file=sys.stderr)
         return 1
-    except KeyboardInterrupt:
-        print(f"drake-grasp {args.command}: interrupted", file=sys.stderr)
-        return 130
+    except KeyboardInterrupt as e:
+        terminated = isinstance(e, Terminated)
+        print(f"drake-grasp {args.command}: {'terminated' if terminated else 'interrupted'}", file=sys.stderr)
+        return 143 if terminated else 130
+
+
+class _sigterm_as_interrupt:
+    """While active (in the main thread), SIGTERM raises `Terminated`, which unwinds like Ctrl-C."""
+
+    def __enter__(self):
+        self.previous = None
+        if threading.current_thread() is threading.main_thread():
+            self.previous = signal.signal(signal.SIGTERM, self._raise)
+        return self
+
+    @staticmethod
+    def _raise(signum, frame):
+        raise Terminated()
+
+    def __exit__(self, *exc):
+        if self.previous is not None:
+            signal.signal(signal.SIGTERM, self.previous)
 
 
 if __name__ == "__main__":

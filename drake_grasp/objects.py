@@ -750,10 +750,17 @@ def _mm(size: float) -> str:
     return f"{size * 1000.0:.4g}mm".replace(".", "p")
 
 
+PRIMITIVE_SIZE_RANGE = (0.001, 10.0)  # m: from a millimetre (Drake's geometry breaks down far below)
+# to ten metres (far past anything the hand can hold: a number that large is a typo or the wrong unit)
+
+
 def _check_size(label: str, **sizes: float) -> None:
+    low, high = PRIMITIVE_SIZE_RANGE
     for key, value in sizes.items():
         if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0.0):
             raise ObjectError(f"{label}: {key} must be a positive number of metres, got {value!r}")
+        if not low <= value <= high:
+            raise ObjectError(f"{label}: {key} {value:g} m is outside [{low:g}, {high:g}] m (sizes are in metres)")
 
 
 def sphere_object(
@@ -1199,6 +1206,9 @@ def resolve_object(name_or_path: str | os.PathLike, **kw) -> ObjectSpec:
     if not isinstance(name_or_path, str):
         return _object_from_file(Path(name_or_path), os.fspath(name_or_path), kw)
     text = name_or_path.strip()
+    if not text:
+        raise ObjectError("empty object name; give a catalogue name, a primitive such as sphere:0.12, "
+                          "or a mesh file")
     if text in _PAPER_FACTORIES:
         return paper_object(text, **kw)
     kind = text.split(":", 1)[0].lower() if ":" in text else None

@@ -29,9 +29,8 @@ import pathlib
 import time
 
 import numpy as np
-from pydrake.geometry import Meshcat, MeshcatVisualizer, MeshcatVisualizerParams, Role
+from pydrake.geometry import Meshcat
 from pydrake.math import RigidTransform, RotationMatrix
-from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder, EventStatus
 from pydrake.systems.primitives import Adder, ConstantVectorSource
 
@@ -47,7 +46,8 @@ from drake_grasp.primitives.estimate import ObjectEstimate, ObjectEstimator
 from drake_grasp.primitives.principal_axis import PrincipalAxisParams, PrincipalAxisPrimitive
 from drake_grasp.primitives.resemblance import DEFAULT_ARCS, ResemblanceParams, ShapeResemblancePrimitive
 from drake_grasp.primitives.scores import SHAPES, ScoreParams
-from drake_grasp.primitives.sequencer import ExplorationSequencer, Phase, SequencerParams
+from drake_grasp.primitives.sequencer import ExplorationSequencer, ExplorationPhase, SequencerParams
+from drake_grasp.simulation import AddReplay, StartSimulation, recording
 from drake_grasp.station import MakeStation, Scenario, Station, object_rest_pose
 from drake_grasp.yaml_config import load_named
 
@@ -131,7 +131,7 @@ def camera_mount(station: Station) -> tuple:
     return frame, station.scenario.camera.X_PB.GetDeterministicValue()
 
 
-def AddVisualPrimitives(builder: DiagramBuilder, station: Station, station_system, config: PerceptionConfig,
+def AddVisualPrimitives(builder: DiagramBuilder, station: Station, config: PerceptionConfig,
                         *, connect_arm: bool = True) -> VisualPrimitives:
     """Adds the fixed-rate camera, the primitives, the twist sum, the camera motion controller and
     the estimator that gathers the primitives' outputs.
@@ -141,19 +141,19 @@ def AddVisualPrimitives(builder: DiagramBuilder, station: Station, station_syste
     are left for the caller to drive.
 
     Args:
-        builder: the builder that holds `station_system`.
+        builder: the builder that holds the station's Diagram (`station.diagram`).
         station: the station (MakeStation with camera=True).
-        station_system: the station's Diagram as added to `builder`.
         config: the choices.
         connect_arm: False when the caller routes the camera motion to the arm itself (a supervisor
             that moves the arm after the exploration).
     """
+    station_system = station.diagram
     intrinsics = CameraIntrinsics.from_camera_config(station.scenario.camera)
     period = config.period
     camera = builder.AddNamedSystem(
         "silhouette_camera", SilhouetteCamera(intrinsics, object_labels(station), period, config.segmentation))
     image_port = "camera.label_image" if config.segmentation.method == "label" else "camera.color_image"
-    builder.Connect(station_system.GetOutputPort(image_port), camera.get_input_port(0))
+    builder.Connect(station_system.GetOutputPort(image_port), camera.image_input_port())
     builder.Connect(station_system.GetOutputPort("camera.X_WC"), camera.GetInputPort("X_WC"))
 
     depth = builder.AddNamedSystem("depth_primitive", DepthPrimitive(intrinsics, period, config.depth))
@@ -224,18 +224,17 @@ class Exploration:
 
 
 def MakeExploration(scenario: Scenario, config: PerceptionConfig, object_spec: ObjectSpec | None = None, *,
-                    meshcat: Meshcat | None = None) -> Exploration:
-    """The station (with its camera), the primitives and the sequencer; the hand held open."""
+                    replay: bool = False) -> Exploration:
+    """The station (with its camera), the primitives and the sequencer; the hand held open. With
+    `replay`, a Meshcat visualizer too (the Exploration's `meshcat`)."""
     station = MakeStation(scenario, object_spec, camera=True)
     builder = DiagramBuilder()
     station_system = builder.AddNamedSystem("station", station.diagram)
-    primitives = AddVisualPrimitives(builder, station, station_system, config)
+    primitives = AddVisualPrimitives(builder, station, config)
     sequencer = AddExplorationSequencer(builder, primitives, config)
     hand = builder.AddNamedSystem("hand_open", ConstantVectorSource([0.0, float(HandAction.OPEN)]))
     builder.Connect(hand.get_output_port(), station_system.GetInputPort("hand.command"))
-    if meshcat is not None:
-        MeshcatVisualizer.AddToBuilder(builder, station_system.GetOutputPort("query_object"), meshcat,
-                                       MeshcatVisualizerParams(role=Role.kIllustration))
+    meshcat = AddReplay(builder, station_system) if replay else None
     diagram = builder.Build()
     diagram.set_name("exploration")
     return Exploration(diagram, station, station_system, primitives, sequencer, config, meshcat)
@@ -299,22 +298,18 @@ def explore(scenario: Scenario, config: PerceptionConfig | None = None, object_s
     """
     config = config or load_perception_config()
     wall_start = time.perf_counter()
-    meshcat = Meshcat() if replay_html else None
-    exploration = MakeExploration(scenario, config, object_spec, meshcat=meshcat)
+    exploration = MakeExploration(scenario, config, object_spec, replay=bool(replay_html))
     station = exploration.station
     if look_at is None:
         look_at = np.array([scenario.object.x, scenario.object.y, 0.0])
     table_height = config.depth.table_height
     q0 = start_configuration(station, start_camera_pose(look_at, config, table_height), config)
 
-    simulator = Simulator(exploration.diagram)
-    context = simulator.get_mutable_context()
-    plant = station.plant
-    plant_context = plant.GetMyMutableContextFromRoot(context)
-    plant.SetPositions(plant_context, station.wam, q0)
-    station.hand_controller.SetInitialFingers(station.hand_controller.GetMyMutableContextFromRoot(context))
     motion = exploration.primitives.camera_motion
-    motion.SetInitialPositions(motion.GetMyMutableContextFromRoot(context), q0)
+    sim = StartSimulation(exploration.diagram, station, q0,
+                          lambda root: motion.SetInitialPositions(motion.GetMyMutableContextFromRoot(root), q0))
+    simulator, context, plant_context = sim.simulator, sim.context, sim.plant_context
+    plant = station.plant
     sequencer = exploration.sequencer
     sequencer_context = sequencer.GetMyContextFromRoot(context)
     simulator.set_monitor(lambda root: EventStatus.ReachedTermination(sequencer, "exploration over")
@@ -323,15 +318,10 @@ def explore(scenario: Scenario, config: PerceptionConfig | None = None, object_s
     X_WO_start = object_body.EvalPoseInWorld(plant_context)
     build_time = time.perf_counter() - wall_start
 
-    if meshcat is not None:
-        meshcat.StartRecording()
     sim_start = time.perf_counter()
-    simulator.AdvanceTo(config.sequencer.total_time + 1.0)
+    with recording(exploration.meshcat, replay_html):
+        simulator.AdvanceTo(config.sequencer.total_time + 1.0)
     sim_wall = time.perf_counter() - sim_start
-    if meshcat is not None:
-        meshcat.StopRecording()
-        meshcat.PublishRecording()
-        pathlib.Path(replay_html).write_text(meshcat.StaticHtml())
 
     state = sequencer.state(sequencer_context)
     timings = {
@@ -340,7 +330,7 @@ def explore(scenario: Scenario, config: PerceptionConfig | None = None, object_s
         "sim_wall_time": sim_wall,
         "wall_time": time.perf_counter() - wall_start,
         "frames": exploration.primitives.camera.frames,
-        "phase_starts": {Phase(p).name.lower(): t for p, t in state.phase_starts},
+        "phase_starts": {ExplorationPhase(p).name.lower(): t for p, t in state.phase_starts},
     }
     return ExplorationResult(read_estimate(exploration, context, timings), X_WO_start,
                              object_body.EvalPoseInWorld(plant_context))

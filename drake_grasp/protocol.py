@@ -12,7 +12,21 @@ import math
 
 import numpy as np
 
-from drake_grasp.control.grasp_executor import ExecutionTimes
+
+@dataclasses.dataclass
+class ExecutionTimes:
+    """Timing of the grasp sequence, s (choices: they live in the scenario's `protocol`)."""
+
+    approach_speed: float = 0.05  # m/s
+    touch_force: float = 2.0  # N: contact force on the hand that ends the approach
+    close_time: float = 1.6  # s for the fingers to close and settle
+    preshape_time: float = 1.2  # s
+    lift_height: float = 0.10  # m
+    lift_time: float = 1.5  # s
+    hold_time: float = 10.0  # s
+
+    joint_speed: float = 1.0  # rad/s: the largest joint speed of the move to the pre-grasp pose
+    update_period: float = 0.01  # s
 
 
 @dataclasses.dataclass

@@ -16,6 +16,10 @@ Output ports:
     body_poses, contact_results, query_object   (the plant's and the scene graph's).
     camera.color_image, camera.depth_image, camera.label_image   the wrist camera (RgbdSensor).
 
+A system outside the station that reads or writes one of these signals names its port exactly so
+(the grasp executor's `wam.state` in, `wam.desired_state`, `hand.command`, `hand.finger_preshape`
+out), so that every connection reads `Connect(a.GetOutputPort(name), b.GetInputPort(name))`.
+
 The scenario is a dataclass loaded with Drake's `yaml_load_typed`, in the style of Drake's
 hardware_sim example; every number that is a choice (time step, contact model, gains, camera) lives in
 the YAML files under diagrams/.
@@ -109,8 +113,20 @@ def load_scenario(filename: str | pathlib.Path = DEFAULT_SCENARIO_FILE, scenario
     if filename.resolve() != DEFAULT_SCENARIO_FILE.resolve():
         defaults = load_scenario(DEFAULT_SCENARIO_FILE, "default")
     scenario = load_named(Scenario, filename, scenario_name, defaults, "scenario")
-    validate_scenario(scenario)
+    try:
+        validate_scenario(scenario)
+    except ValueError as e:
+        raise ValueError(f"{filename}: scenario '{scenario_name}': {e}") from None
     return scenario
+
+
+# The values Drake's MultibodyPlantConfig accepts for its string fields (checked here so that a typo
+# is a one-line input error before any work, not a failure when the plant is built).
+_PLANT_CONFIG_CHOICES = {
+    "contact_model": ("point", "hydroelastic", "hydroelastic_with_fallback"),
+    "discrete_contact_approximation": ("", "tamsi", "sap", "similar", "lagged"),
+    "contact_surface_representation": ("triangle", "polygon"),
+}
 
 
 def validate_scenario(scenario: Scenario) -> None:
@@ -118,6 +134,11 @@ def validate_scenario(scenario: Scenario) -> None:
     config = scenario.plant_config
     if not (math.isfinite(config.time_step) and 0 < config.time_step <= 0.05):
         raise ValueError(f"plant_config.time_step must be in (0, 0.05] s, got {config.time_step}")
+    for name, choices in _PLANT_CONFIG_CHOICES.items():
+        value = getattr(config, name)
+        if value not in choices:
+            shown = ", ".join(repr(c) for c in choices)
+            raise ValueError(f"plant_config.{name} must be one of {shown}, got {value!r}")
     placement = scenario.object
     for name in ("x", "y", "yaw_deg"):
         if not math.isfinite(getattr(placement, name)):

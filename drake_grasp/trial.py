@@ -21,24 +21,22 @@ import time
 from collections.abc import Callable
 
 import numpy as np
-from pydrake.geometry import Meshcat, MeshcatVisualizer, MeshcatVisualizerParams, Role
 from pydrake.math import RigidTransform
 from pydrake.multibody.tree import BodyIndex
-from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder
 
 from drake_grasp.control.arm_motion import UNREACHABLE, ReachError
-from drake_grasp.control.grasp_executor import ConnectGraspExecutor, GraspExecutor, Phase
+from drake_grasp.control.grasp_executor import ConnectGraspExecutor, GraspExecutor, GraspPhase
 from drake_grasp.grasps import GraspPlan
 from drake_grasp.objects import ObjectSpec
 from drake_grasp.primitives.estimate import OBJECT_NOT_FOUND
 from drake_grasp.protocol import TrialVariation
+from drake_grasp.simulation import AddReplay, StartSimulation, recording
 from drake_grasp.station import MakeStation, Scenario
+from drake_grasp.success import DROPPED_DURING_LIFT, MISSED, SLIPPED_DURING_HOLD, GraspObservation, judge_grasp
 
-# Failure reasons (the record's `failure` field).
-MISSED = "missed"
-DROPPED_DURING_LIFT = "dropped during lift"
-SLIPPED_DURING_HOLD = "slipped during hold"
+# Failure reasons (the record's `failure` field): those of the success test, and a simulation that
+# could not be carried out.
 SIMULATION_ERROR = "simulation error"
 # Every failure reason, including the two that end a sequence before the grasp: the camera never saw
 # the object, and the arm cannot reach the grasp.
@@ -171,11 +169,11 @@ def run_compliant_trial(scenario: Scenario, spec: ObjectSpec, *, seed: int, gras
                          failure="", variation=dataclasses.asdict(variation), estimate_source="camera")
     station = MakeStation(scenario, spec, camera=True)
     builder = DiagramBuilder()
-    station_system = builder.AddNamedSystem("station", station.diagram)
-    primitives = AddVisualPrimitives(builder, station, station_system, config, connect_arm=False)
+    builder.AddNamedSystem("station", station.diagram)
+    primitives = AddVisualPrimitives(builder, station, config, connect_arm=False)
     sequencer = AddExplorationSequencer(builder, primitives, config)
     q_start = start_configuration(station, start_camera_pose(nominal, config, config.depth.table_height), config)
-    supervisor = AddCompliantGraspSupervisor(builder, station, station_system, primitives, sequencer, q_start,
+    supervisor = AddCompliantGraspSupervisor(builder, station, primitives, sequencer, q_start,
                                              protocol.execution, grasp)
 
     def start_camera_motion(context):
@@ -220,7 +218,7 @@ def _execute(builder: DiagramBuilder, station, executor: GraspExecutor, protocol
     Args:
         builder: holds the station and the executor (or supervisor), connected.
         station: the station in it.
-        executor: the sequence to run to Phase.DONE.
+        executor: the sequence to run to GraspPhase.DONE.
         protocol: the scenario's TrialProtocol (the success test's thresholds).
         q_start: the arm's joint angles at time 0, rad.
         record: the record to fill.
@@ -231,19 +229,9 @@ def _execute(builder: DiagramBuilder, station, executor: GraspExecutor, protocol
     """
     plant = station.plant
     station_system = station.diagram
-    meshcat = None
-    if replay_html:
-        meshcat = Meshcat()
-        MeshcatVisualizer.AddToBuilder(builder, station_system.GetOutputPort("query_object"), meshcat,
-                                       MeshcatVisualizerParams(role=Role.kIllustration))
-    diagram = builder.Build()
-    simulator = Simulator(diagram)
-    context = simulator.get_mutable_context()
-    plant_context = plant.GetMyMutableContextFromRoot(context)
-    plant.SetPositions(plant_context, station.wam, q_start)
-    station.hand_controller.SetInitialFingers(station.hand_controller.GetMyMutableContextFromRoot(context))
-    if initialize is not None:
-        initialize(context)
+    meshcat = AddReplay(builder, station_system) if replay_html else None
+    sim = StartSimulation(builder.Build(), station, q_start, initialize)
+    simulator, context, plant_context = sim.simulator, sim.context, sim.plant_context
     executor_context = executor.GetMyContextFromRoot(context)
     object_body = plant.get_body(plant.GetBodyIndices(station.object_instance)[0])
     palm = plant.GetFrameByName("bh_palm")
@@ -259,43 +247,34 @@ def _execute(builder: DiagramBuilder, station, executor: GraspExecutor, protocol
         names, on_table = _object_contacts(plant, plant_context, object_body, table_bodies)
         return sorted(names), on_table
 
-    if meshcat is not None:
-        p = X_WO.translation()
-        meshcat.SetCameraPose(p + [0.45, -0.75, 0.45], p)
-        meshcat.StartRecording()
-    X_PO_hold, contacts_after_close = None, []
+    X_PO_hold, rise_hold, contacts_after_close = None, None, []
     try:
-        simulator.Initialize()
-        if executor.phase(executor_context) != Phase.EXPLORE:
-            run.X_WO_decision = object_body.EvalPoseInWorld(plant_context)
-        while executor.phase(executor_context) != Phase.DONE:
-            if context.get_time() > time_limit:
-                raise RuntimeError(f"the grasp sequence did not finish in {time_limit:.0f} s")
-            phase_before = executor.phase(executor_context)
-            simulator.AdvanceTo(context.get_time() + monitor_period)
-            phase = executor.phase(executor_context)
-            p_WO = object_body.EvalPoseInWorld(plant_context).translation()
-            if not np.all(np.isfinite(p_WO)) or np.linalg.norm(p_WO) > 10.0:
-                raise RuntimeError("the simulation diverged (object far away or not finite)")
-            if phase_before == Phase.EXPLORE and phase != Phase.EXPLORE:
+        with recording(meshcat, replay_html, look_at=X_WO.translation()):
+            simulator.Initialize()
+            if executor.phase(executor_context) != GraspPhase.EXPLORE:
                 run.X_WO_decision = object_body.EvalPoseInWorld(plant_context)
-            if phase_before == Phase.CLOSE and phase == Phase.LIFT:
-                contacts_after_close, _ = touching()
-            if phase_before != Phase.HOLD and phase == Phase.HOLD:
-                X_PO_hold = X_PO()
-                rise_hold = p_WO[2] - X_WO.translation()[2]
+            while executor.phase(executor_context) != GraspPhase.DONE:
+                if context.get_time() > time_limit:
+                    raise RuntimeError(f"the grasp sequence did not finish in {time_limit:.0f} s")
+                phase_before = executor.phase(executor_context)
+                simulator.AdvanceTo(context.get_time() + monitor_period)
+                phase = executor.phase(executor_context)
+                p_WO = object_body.EvalPoseInWorld(plant_context).translation()
+                if not np.all(np.isfinite(p_WO)) or np.linalg.norm(p_WO) > 10.0:
+                    raise RuntimeError("the simulation diverged (object far away or not finite)")
+                if phase_before == GraspPhase.EXPLORE and phase != GraspPhase.EXPLORE:
+                    run.X_WO_decision = object_body.EvalPoseInWorld(plant_context)
+                if phase_before == GraspPhase.CLOSE and phase == GraspPhase.LIFT:
+                    contacts_after_close, _ = touching()
+                if phase_before != GraspPhase.HOLD and phase == GraspPhase.HOLD:
+                    X_PO_hold = X_PO()
+                    rise_hold = float(p_WO[2] - X_WO.translation()[2])
     except Exception as e:  # a failed simulation is a failed trial, never a crash of the run
         record.failure = SIMULATION_ERROR
         record.detail = str(e).strip().splitlines()[0] if str(e).strip() else type(e).__name__
         record.sim_time = context.get_time()
         run.decision = executor.progress(executor_context).decision
         return run
-    finally:
-        if meshcat is not None:
-            meshcat.StopRecording()
-            meshcat.PublishRecording()
-            with open(replay_html, "w") as f:
-                f.write(meshcat.StaticHtml())
 
     progress = executor.progress(executor_context)
     run.decision = progress.decision
@@ -309,7 +288,7 @@ def _execute(builder: DiagramBuilder, station, executor: GraspExecutor, protocol
     record.contacts_after_close = " ".join(contacts_after_close)
     record.contacts_at_end = " ".join(contacts_end)
     record.approach_stopped_on_contact = bool(progress.stopped_on_contact)
-    q_hand = station.hand_controller._index.joint_positions(plant.get_state_output_port(station.hand).Eval(plant_context))
+    q_hand = station.hand_controller.joint_angles(plant.get_state_output_port(station.hand).Eval(plant_context))
     record.finger_angles = [float(q_hand[0])] + [float(a) for a in q_hand[2:8]]
     status = station_system.GetOutputPort("hand.finger_status").Eval(station_system.GetMyContextFromRoot(context))
     record.breakaway = [bool(b > 0.5) for b in status[:3]]
@@ -318,14 +297,11 @@ def _execute(builder: DiagramBuilder, station, executor: GraspExecutor, protocol
         slip = X_PO_hold.inverse() @ X_PO()
         record.slip_distance = float(np.linalg.norm(X_PO().translation() - X_PO_hold.translation()))
         record.slip_angle = float(slip.rotation().ToAngleAxis().angle())
-    lift_needed = 0.5 * protocol.execution.lift_height
-    if not contacts_after_close and (X_PO_hold is None or rise_hold < lift_needed):
-        record.failure = MISSED
-    elif X_PO_hold is None or rise_hold < lift_needed:
-        record.failure = DROPPED_DURING_LIFT
-    elif (on_table or record.lift < lift_needed or record.slip_distance >= protocol.slip_distance
-          or record.slip_angle >= math.radians(protocol.slip_angle_deg)):
-        record.failure = SLIPPED_DURING_HOLD
+    observation = GraspObservation(touched_after_close=bool(contacts_after_close), rise_at_hold=rise_hold,
+                                   lift_at_end=record.lift, on_table_at_end=on_table,
+                                   slip_distance=record.slip_distance, slip_angle=record.slip_angle)
+    record.failure = judge_grasp(observation, protocol.execution.lift_height, protocol.slip_distance,
+                                 protocol.slip_angle_deg)
     record.success = record.failure == ""
     return run
 

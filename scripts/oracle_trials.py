@@ -26,8 +26,7 @@ def main():
     out.mkdir(parents=True, exist_ok=True)
     specs = [TrialSpec(o, "oracle", g, s, scenario_name=args.scenario_name)
              for o in PAPER_OBJECTS for g in GRASPS for s in range(args.seeds)]
-    table = run_trials(specs, out / "trials.csv", workers=args.workers, label="oracle")
-    rows = table.rows()
+    rows = run_trials(specs, out / "trials.csv", workers=args.workers, label="oracle")
     print(f"\n{'object':16s}" + "".join(f"{g:>24s}" for g in GRASPS))
     for o in PAPER_OBJECTS:
         cells = []

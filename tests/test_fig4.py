@@ -1,5 +1,6 @@
 """Fig. 4's sweep: a small real run, its files, and resuming after an interruption."""
 
+import contextlib
 import csv
 import io
 
@@ -32,7 +33,9 @@ def test_small_sweep_writes_rows_and_figures_and_resumes(tmp_path):
     lines = csv_path.read_text().splitlines(keepends=True)
     csv_path.write_text("".join(lines[:-6]) + lines[-6][:10])
     progress = io.StringIO()
-    again = fig4.run_fig4(config, tmp_path, workers=1, progress=progress)
+    with contextlib.redirect_stderr(io.StringIO()) as report:
+        again = fig4.run_fig4(config, tmp_path, workers=1, progress=progress)
+    assert report.getvalue() == f"{csv_path}:{len(lines) - 5}: damaged record, recomputing\n"
     # Only the interrupted (shape, size) task is computed again.
     assert "resuming, 8/9" in progress.getvalue()
     assert len(again) == len(rows)
@@ -46,14 +49,16 @@ def test_small_sweep_writes_rows_and_figures_and_resumes(tmp_path):
 
 def test_results_table_skips_known_keys_and_drops_a_torn_line(tmp_path):
     path = tmp_path / "t.csv"
-    table = ResultsTable(path, ["a", "b", "value"], ["a", "b"])
+    table = ResultsTable(path, ["a", "b", "value"], ["a", "b"], {"b": "float", "value": "float"})
     assert table.append([{"a": "x", "b": 0.1, "value": 1.0}, {"a": "x", "b": 0.2, "value": 2.0}]) == 2
     assert table.append([{"a": "x", "b": 0.1, "value": 9.0}]) == 0
     assert ("x", np.float64(0.2)) in table  # numpy scalars key like floats
     with open(path, "a") as f:
         f.write("x,0.3,3.")  # torn
-    table = ResultsTable(path, ["a", "b", "value"], ["a", "b"])
+    report = io.StringIO()
+    table = ResultsTable(path, ["a", "b", "value"], ["a", "b"], report=report)
     assert len(table) == 2 and ("x", 0.2) in table and ("x", 0.3) not in table
+    assert report.getvalue() == f"{path}:4: damaged record, recomputing\n"
     with pytest.raises(ValueError, match="columns do not match"):
         ResultsTable(path, ["a", "c"], ["a"])
 

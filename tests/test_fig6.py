@@ -53,7 +53,7 @@ def test_a_small_real_sweep_runs_resumes_and_plots(tmp_path):
     progress = io.StringIO()
     again = run_trials(specs, tmp_path / "fig6.csv", workers=1, progress=progress)
     assert "resuming, 3/3" in progress.getvalue() and len(again) == 3
-    stats = fig6.grasp_stats(again.rows(), config.objects)
+    stats = fig6.grasp_stats(again, config.objects)
     assert fig6.chosen_grasp(stats["sponge"]) == "box"  # the oracle's choice: the sponge's true class
     assert all(p.exists() for p in fig6.plot(stats, tmp_path))
 

@@ -21,7 +21,7 @@ from drake_grasp.primitives.common import PrimitiveCommand
 from drake_grasp.primitives.depth import DepthParams, DepthPrimitive
 from drake_grasp.primitives.principal_axis import PrincipalAxisPrimitive
 from drake_grasp.primitives.resemblance import ShapeResemblancePrimitive
-from drake_grasp.primitives.sequencer import ExplorationSequencer, Phase, SequencerParams
+from drake_grasp.primitives.sequencer import ExplorationSequencer, ExplorationPhase, SequencerParams
 from drake_grasp.primitives.silhouette import CameraSample, measure_silhouette
 
 K = CameraIntrinsics.from_fov_y(320, 240, math.radians(60.0))
@@ -267,16 +267,16 @@ def test_sequencer_runs_the_phases(visible):
         return [int(sequencer.GetOutputPort(n).Eval(context)[0])
                 for n in ("phase", "depth_command", "axis_command", "resemblance_command")]
 
-    assert commands() == [Phase.APPROACH, PrimitiveCommand.APPROACH, PrimitiveCommand.TRACK, PrimitiveCommand.OFF]
+    assert commands() == [ExplorationPhase.APPROACH, PrimitiveCommand.APPROACH, PrimitiveCommand.TRACK, PrimitiveCommand.OFF]
     simulator.AdvanceTo(0.75)
     if not visible:
-        assert commands() == [Phase.NOT_FOUND] + [PrimitiveCommand.OFF] * 3
+        assert commands() == [ExplorationPhase.NOT_FOUND] + [PrimitiveCommand.OFF] * 3
         return
-    assert commands() == [Phase.DEPTH_AXIS, PrimitiveCommand.EXPLORE, PrimitiveCommand.EXPLORE, PrimitiveCommand.OFF]
+    assert commands() == [ExplorationPhase.DEPTH_AXIS, PrimitiveCommand.EXPLORE, PrimitiveCommand.EXPLORE, PrimitiveCommand.OFF]
     simulator.AdvanceTo(1.75)
-    assert commands() == [Phase.RESEMBLANCE, PrimitiveCommand.TRACK, PrimitiveCommand.TRACK, PrimitiveCommand.EXPLORE]
+    assert commands() == [ExplorationPhase.RESEMBLANCE, PrimitiveCommand.TRACK, PrimitiveCommand.TRACK, PrimitiveCommand.EXPLORE]
     simulator.AdvanceTo(2.75)
-    assert commands() == [Phase.DONE] + [PrimitiveCommand.OFF] * 3
+    assert commands() == [ExplorationPhase.DONE] + [PrimitiveCommand.OFF] * 3
     assert sequencer.state(context).phase.finished
 
 
@@ -330,5 +330,5 @@ def test_the_sequencer_stops_the_camera_when_the_exploration_is_over():
     simulator.AdvanceTo(0.2)
     assert sequencer.GetOutputPort("camera_active").Eval(context)[0] == 1.0
     simulator.AdvanceTo(0.4)
-    assert sequencer.state(context).phase == Phase.DONE
+    assert sequencer.state(context).phase == ExplorationPhase.DONE
     assert sequencer.GetOutputPort("camera_active").Eval(context)[0] == 0.0

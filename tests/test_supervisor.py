@@ -11,11 +11,11 @@ from pydrake.systems.framework import InputPortIndex
 
 from drake_grasp import cli
 from drake_grasp.control.arm_motion import UNREACHABLE
-from drake_grasp.control.grasp_executor import Phase
+from drake_grasp.control.grasp_executor import GraspPhase
 from drake_grasp.control.supervisor import CompliantGraspSupervisor
 from drake_grasp.objects import paper_object
 from drake_grasp.primitives.estimate import OBJECT_NOT_FOUND, ObjectEstimate
-from drake_grasp.primitives.sequencer import Phase as ExplorationPhase
+from drake_grasp.primitives.sequencer import ExplorationPhase
 from drake_grasp.station import MakeStation, load_scenario
 from drake_grasp.trial import run_compliant_trial
 
@@ -37,7 +37,7 @@ def _decide(estimate: ObjectEstimate, exploration_phase: ExplorationPhase, force
     supervisor = CompliantGraspSupervisor(plant, station.scene_graph, station.wam, plant.GetBodyIndices(station.hand),
                                           q_start, scenario.protocol.execution, (CAMERA, GRASP), forced_grasp)
     context = supervisor.CreateDefaultContext()
-    supervisor.GetInputPort("wam_state").FixValue(context, np.concatenate([q_start, np.zeros(7)]))
+    supervisor.GetInputPort("wam.state").FixValue(context, np.concatenate([q_start, np.zeros(7)]))
     supervisor.GetInputPort("contact_results").FixValue(context, ContactResults())
     supervisor.GetInputPort("exploration_phase").FixValue(context, [float(exploration_phase)])
     supervisor.GetInputPort("object_estimate").FixValue(context, estimate)
@@ -47,9 +47,9 @@ def _decide(estimate: ObjectEstimate, exploration_phase: ExplorationPhase, force
 
 def test_while_exploring_the_camera_drives_the_arm_and_the_hand_stays_open():
     supervisor, context = _decide(_ball_estimate(), ExplorationPhase.RESEMBLANCE)
-    assert supervisor.phase(context) == Phase.EXPLORE and supervisor.decision(context) is None
+    assert supervisor.phase(context) == GraspPhase.EXPLORE and supervisor.decision(context) is None
     assert supervisor.GetOutputPort("arm_source").Eval(context) == CAMERA
-    spread, action = supervisor.GetOutputPort("hand_command").Eval(context)
+    spread, action = supervisor.GetOutputPort("hand.command").Eval(context)
     assert spread == 0.0 and action == 0.0  # HandAction.OPEN
 
 
@@ -57,7 +57,7 @@ def test_the_decision_is_the_grasp_of_the_most_resembling_shape():
     supervisor, context = _decide(_ball_estimate(), ExplorationPhase.DONE)
     decision = supervisor.decision(context)
     assert decision.chosen == decision.executed == "spherical"
-    assert supervisor.phase(context) == Phase.MOVE
+    assert supervisor.phase(context) == GraspPhase.MOVE
     assert supervisor.GetOutputPort("arm_source").Eval(context) == GRASP
     # The plan comes from the estimate alone: the palm approaches the estimated centre from above.
     np.testing.assert_allclose(decision.plan.X_WP_target.translation()[:2], [0.55, 0.0], atol=1e-9)
@@ -75,10 +75,10 @@ def test_a_forced_grasp_is_executed_and_the_choice_still_recorded():
 
 def test_no_object_or_no_reach_ends_the_sequence_with_the_reason():
     supervisor, context = _decide(ObjectEstimate(status=OBJECT_NOT_FOUND), ExplorationPhase.NOT_FOUND)
-    assert supervisor.phase(context) == Phase.DONE and supervisor.progress(context).outcome == OBJECT_NOT_FOUND
+    assert supervisor.phase(context) == GraspPhase.DONE and supervisor.progress(context).outcome == OBJECT_NOT_FOUND
     assert supervisor.GetOutputPort("arm_source").Eval(context) == CAMERA
     far, context = _decide(_ball_estimate(centre=(3.0, 0.0, 0.1)), ExplorationPhase.DONE)
-    assert far.phase(context) == Phase.DONE and far.progress(context).outcome == UNREACHABLE
+    assert far.phase(context) == GraspPhase.DONE and far.progress(context).outcome == UNREACHABLE
     assert far.decision(context).executed == "spherical"
 
 

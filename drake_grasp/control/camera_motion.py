@@ -100,7 +100,7 @@ class CameraTwistController(LeafSystem):
         ik.set_end_effector_translational_velocity_limits(-p.max_linear_speed * np.ones(3),
                                                          p.max_linear_speed * np.ones(3))
         self._ik = ik
-        self.DeclareVectorInputPort("V_C_desired", 6)
+        self._V_C_desired_port = self.DeclareVectorInputPort("V_C_desired", 6)
         self._state = self.DeclareDiscreteState(2 * n)
         self._status = self.DeclareDiscreteState(1)
         self.DeclareStateOutputPort("wam.desired_state", self._state)
@@ -122,7 +122,7 @@ class CameraTwistController(LeafSystem):
         n = arm.NUM_JOINTS
         x = context.get_discrete_state(self._state).get_value()
         q, v = x[:n].copy(), x[n:].copy()
-        V_C = self.get_input_port(0).Eval(context)
+        V_C = self._V_C_desired_port.Eval(context)
         X_WC = self.camera_pose(q)
         R_WC = X_WC.rotation().matrix()
         V_W = np.concatenate([R_WC @ V_C[:3], R_WC @ V_C[3:]])

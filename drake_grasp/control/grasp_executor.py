@@ -6,7 +6,7 @@ is *guarded*: the palm moves along its normal at a constant speed and stops as s
 force on the hand exceeds a threshold (the palm touched the object), or at the plan's target (the
 estimated surface). The same executor runs the compliant grasps and the grasps planned by other
 methods, so every method is executed by the same arm, controller and timings. Given no plan, it
-starts in Phase.EXPLORE: the compliant-grasp supervisor (`control.supervisor`) is such a subclass,
+starts in GraspPhase.EXPLORE: the compliant-grasp supervisor (`control.supervisor`) is such a subclass,
 which decides the plan while the simulation runs.
 """
 
@@ -24,9 +24,10 @@ from pydrake.systems.framework import BasicVector, Context, DiagramBuilder, Leaf
 from drake_grasp.control.arm_motion import ArmKinematics, JointPath
 from drake_grasp.grasps import GraspPlan
 from drake_grasp.hand import HandAction
+from drake_grasp.protocol import ExecutionTimes
 
 
-class Phase(enum.IntEnum):
+class GraspPhase(enum.IntEnum):
     EXPLORE = 0  # no plan yet: the camera explores (the compliant-grasp supervisor only)
     MOVE = 1  # to the pre-grasp pose, hand opening to the mode's spread
     PRESHAPE = 2  # fingers to a planned posture (planned grasps only)
@@ -35,22 +36,6 @@ class Phase(enum.IntEnum):
     LIFT = 5
     HOLD = 6
     DONE = 7
-
-
-@dataclasses.dataclass
-class ExecutionTimes:
-    """Timing of the grasp sequence, s (choices: they live in the scenario's `protocol`)."""
-
-    approach_speed: float = 0.05  # m/s
-    touch_force: float = 2.0  # N: contact force on the hand that ends the approach
-    close_time: float = 1.6  # s for the fingers to close and settle
-    preshape_time: float = 1.2  # s
-    lift_height: float = 0.10  # m
-    lift_time: float = 1.5  # s
-    hold_time: float = 10.0  # s
-
-    joint_speed: float = 1.0  # rad/s: the largest joint speed of the move to the pre-grasp pose
-    update_period: float = 0.01  # s
 
 
 @dataclasses.dataclass(frozen=True)
@@ -82,7 +67,7 @@ class _Progress:
     """The executor's abstract state.
 
     Attributes:
-        phase, phase_start: the current Phase and when it began, s.
+        phase, phase_start: the current GraspPhase and when it began, s.
         trajectory: PiecewisePolynomial of the arm's joint angles that the phase follows.
         motion: the plan's arm motion (None until a plan is known).
         stopped_on_contact: the approach ended on touch, not at its target.
@@ -93,7 +78,7 @@ class _Progress:
         decision: what the supervisor decided (see `supervisor.Decision`), or None.
     """
 
-    phase: Phase
+    phase: GraspPhase
     phase_start: float
     trajectory: object
     motion: GraspMotion | None = None
@@ -115,13 +100,13 @@ class GraspExecutor(LeafSystem):
     """Runs a GraspPlan from a start configuration of the arm.
 
     Input ports:
-        wam_state: the WAM's [q; v] (7 + 7).
+        wam.state: the WAM's [q; v] (7 + 7).
         contact_results: the plant's ContactResults.
     Output ports:
-        wam_desired_state: [q; v] for the station's ``wam.desired_state``.
-        hand_command: [spread, HandAction] for ``hand.command``.
-        finger_preshape: proximal angles (3) for ``hand.finger_preshape``.
-        phase: the current Phase, as a number.
+        wam.desired_state: [q; v] for the station's ``wam.desired_state``.
+        hand.command: [spread, HandAction] for ``hand.command``.
+        hand.finger_preshape: proximal angles (3) for ``hand.finger_preshape``.
+        phase: the current GraspPhase, as a number.
 
     Raises (at construction): ReachError if the arm cannot reach the pre-grasp or approach poses.
     """
@@ -133,7 +118,7 @@ class GraspExecutor(LeafSystem):
             plant, scene_graph, wam: the station's.
             hand_bodies: the hand's body indices (contact on them ends the approach).
             plan: the grasp to run from time 0; None for a subclass that decides it later (it starts
-                in Phase.EXPLORE, holding the arm at q_start, until it calls `_start_grasp`).
+                in GraspPhase.EXPLORE, holding the arm at q_start, until it calls `_start_grasp`).
             q_start: the arm's joint angles at time 0, rad.
             times: the sequence's timings.
         """
@@ -145,19 +130,20 @@ class GraspExecutor(LeafSystem):
         self._hand_bodies = set(int(b) for b in hand_bodies)
         self._plant = plant
         q_start = np.asarray(q_start, float)
-        initial = _Progress(Phase.EXPLORE, 0.0, _hold(q_start, 0.0), phase_times={Phase.EXPLORE: 0.0})
+        initial = _Progress(GraspPhase.EXPLORE, 0.0, _hold(q_start, 0.0), phase_times={GraspPhase.EXPLORE: 0.0})
         if plan is not None:
             initial = self._start_grasp(initial, plan, q_start, 0.0)
 
-        self.DeclareVectorInputPort("wam_state", 14)
-        self.DeclareAbstractInputPort("contact_results", AbstractValue.Make(ContactResults()))
+        self._wam_state_port = self.DeclareVectorInputPort("wam.state", 14)
+        self._contact_results_port = self.DeclareAbstractInputPort(
+            "contact_results", AbstractValue.Make(ContactResults()))
         self._progress_index = self.DeclareAbstractState(AbstractValue.Make(initial))
         self.DeclarePeriodicUnrestrictedUpdateEvent(times.update_period, 0.0, self._Update)
-        self.DeclareVectorOutputPort("wam_desired_state", 14, self._CalcDesiredState,
+        self.DeclareVectorOutputPort("wam.desired_state", 14, self._CalcDesiredState,
                                      {self.abstract_state_ticket(self._progress_index), self.time_ticket()})
-        self.DeclareVectorOutputPort("hand_command", 2, self._CalcHandCommand,
+        self.DeclareVectorOutputPort("hand.command", 2, self._CalcHandCommand,
                                      {self.abstract_state_ticket(self._progress_index)})
-        self.DeclareVectorOutputPort("finger_preshape", 3, self._CalcPreshape,
+        self.DeclareVectorOutputPort("hand.finger_preshape", 3, self._CalcPreshape,
                                      {self.abstract_state_ticket(self._progress_index)})
         self.DeclareVectorOutputPort("phase", 1, self._CalcPhase, {self.abstract_state_ticket(self._progress_index)})
 
@@ -169,14 +155,14 @@ class GraspExecutor(LeafSystem):
         return GraspMotion(plan, q_pregrasp, approach_path, move_time, plan.approach_distance / self._times.approach_speed)
 
     def _start_grasp(self, progress: _Progress, plan: GraspPlan, q_start: np.ndarray, t: float) -> _Progress:
-        """Plans `plan`'s motion from q_start and enters Phase.MOVE at time t (raises ReachError)."""
+        """Plans `plan`'s motion from q_start and enters GraspPhase.MOVE at time t (raises ReachError)."""
         motion = self.plan_motion(plan, q_start)
         path = JointPath()
         path.add(t, q_start)
         path.add(t + motion.move_time, motion.q_pregrasp)
         phase_times = dict(progress.phase_times)
-        phase_times[Phase.MOVE] = t
-        return dataclasses.replace(progress, phase=Phase.MOVE, phase_start=t, trajectory=path.ToTrajectory(),
+        phase_times[GraspPhase.MOVE] = t
+        return dataclasses.replace(progress, phase=GraspPhase.MOVE, phase_start=t, trajectory=path.ToTrajectory(),
                                    motion=motion, phase_times=phase_times)
 
     # --- Reading the state. -----------------------------------------------------------------------
@@ -184,7 +170,7 @@ class GraspExecutor(LeafSystem):
     def progress(self, context: Context) -> _Progress:
         return context.get_abstract_state(self._progress_index).get_value()
 
-    def phase(self, context: Context) -> Phase:
+    def phase(self, context: Context) -> GraspPhase:
         return self.progress(context).phase
 
     # --- Outputs. ---------------------------------------------------------------------------------
@@ -205,11 +191,11 @@ class GraspExecutor(LeafSystem):
         if motion is None:  # exploring, or ended before a grasp: the hand open, fingers together
             output.SetFromVector([0.0, float(HandAction.OPEN)])
             return
-        if phase <= Phase.MOVE:
+        if phase <= GraspPhase.MOVE:
             action = HandAction.OPEN
-        elif phase == Phase.PRESHAPE or (phase == Phase.APPROACH and motion.has_preshape):
+        elif phase == GraspPhase.PRESHAPE or (phase == GraspPhase.APPROACH and motion.has_preshape):
             action = HandAction.PRESHAPE
-        elif phase == Phase.APPROACH:
+        elif phase == GraspPhase.APPROACH:
             action = HandAction.OPEN
         else:
             action = HandAction.CLOSE
@@ -227,7 +213,7 @@ class GraspExecutor(LeafSystem):
 
     def _hand_contact_force(self, context: Context) -> float:
         """Magnitude of the total contact force on the hand's bodies from other bodies, N."""
-        results: ContactResults = self.get_input_port(1).Eval(context)
+        results: ContactResults = self._contact_results_port.Eval(context)
         total = np.zeros(3)
         for i in range(results.num_hydroelastic_contacts()):
             info = results.hydroelastic_contact_info(i)
@@ -262,45 +248,45 @@ class GraspExecutor(LeafSystem):
         elapsed = t - progress.phase_start
         times = self._times
         motion = progress.motion
-        if progress.phase == Phase.EXPLORE:
+        if progress.phase == GraspPhase.EXPLORE:
             progress = self._Explore(context, progress)
-        elif progress.phase == Phase.MOVE and elapsed >= motion.move_time:
-            progress = self._enter(progress, Phase.PRESHAPE if motion.has_preshape else Phase.APPROACH, t)
-        elif progress.phase == Phase.PRESHAPE and elapsed >= times.preshape_time:
-            progress = self._enter(progress, Phase.APPROACH, t)
-        elif progress.phase == Phase.APPROACH:
+        elif progress.phase == GraspPhase.MOVE and elapsed >= motion.move_time:
+            progress = self._enter(progress, GraspPhase.PRESHAPE if motion.has_preshape else GraspPhase.APPROACH, t)
+        elif progress.phase == GraspPhase.PRESHAPE and elapsed >= times.preshape_time:
+            progress = self._enter(progress, GraspPhase.APPROACH, t)
+        elif progress.phase == GraspPhase.APPROACH:
             done = t >= progress.trajectory.end_time()
             if motion.plan.stop_on_contact and self._hand_contact_force(context) > times.touch_force:
                 progress.stopped_on_contact = True
                 done = True
             if done:
                 progress.approach_travel = times.approach_speed * min(elapsed, motion.approach_duration)
-                progress = self._enter(progress, Phase.CLOSE, t)
-        elif progress.phase == Phase.CLOSE and elapsed >= times.close_time:
-            progress = self._enter(progress, Phase.LIFT, t)
-        elif progress.phase == Phase.LIFT and elapsed >= times.lift_time:
-            progress = self._enter(progress, Phase.HOLD, t)
-        elif progress.phase == Phase.HOLD and elapsed >= times.hold_time:
-            progress = self._enter(progress, Phase.DONE, t)
+                progress = self._enter(progress, GraspPhase.CLOSE, t)
+        elif progress.phase == GraspPhase.CLOSE and elapsed >= times.close_time:
+            progress = self._enter(progress, GraspPhase.LIFT, t)
+        elif progress.phase == GraspPhase.LIFT and elapsed >= times.lift_time:
+            progress = self._enter(progress, GraspPhase.HOLD, t)
+        elif progress.phase == GraspPhase.HOLD and elapsed >= times.hold_time:
+            progress = self._enter(progress, GraspPhase.DONE, t)
         state.get_mutable_abstract_state(self._progress_index).set_value(progress)
 
     def _Explore(self, context: Context, progress: _Progress) -> _Progress:
-        """Phase.EXPLORE's update: a subclass that decides the grasp while running overrides it."""
+        """GraspPhase.EXPLORE's update: a subclass that decides the grasp while running overrides it."""
         raise RuntimeError("GraspExecutor was built without a plan")
 
     def _end(self, progress: _Progress, t: float, outcome: str, detail: str = "") -> _Progress:
         """Ends the sequence at time t without grasping, saying why; the arm holds still."""
-        return dataclasses.replace(self._enter(progress, Phase.DONE, t), outcome=outcome, detail=detail)
+        return dataclasses.replace(self._enter(progress, GraspPhase.DONE, t), outcome=outcome, detail=detail)
 
-    def _enter(self, progress: _Progress, phase: Phase, t: float) -> _Progress:
+    def _enter(self, progress: _Progress, phase: GraspPhase, t: float) -> _Progress:
         """Switches to `phase` at time t, with the arm trajectory that phase follows."""
         q_now = progress.trajectory.value(min(t, progress.trajectory.end_time())).ravel()
         path = JointPath()
         motion = progress.motion
-        if phase == Phase.APPROACH:
+        if phase == GraspPhase.APPROACH:
             path.add(t, q_now)
             path.add_segment(t, motion.approach_duration, [q_now] + list(motion.approach_path[1:]))
-        elif phase == Phase.LIFT:
+        elif phase == GraspPhase.LIFT:
             X_WP = self._kinematics.palm_pose(q_now)
             X_up = RigidTransform(X_WP.rotation(), X_WP.translation() + [0.0, 0.0, self._times.lift_height])
             lift = self._kinematics.straight_line(X_WP, X_up, q_now, step=0.02)
@@ -317,12 +303,12 @@ def ConnectGraspExecutor(builder: DiagramBuilder, station_system, executor: Gras
                          ) -> None:
     """Connects an executor in `builder` to the station's Diagram `station_system` (both added to it):
     the arm's and the contacts' feedback in, the hand's commands out, and (with `arm`) the arm command."""
-    builder.Connect(station_system.GetOutputPort("wam.state"), executor.GetInputPort("wam_state"))
+    builder.Connect(station_system.GetOutputPort("wam.state"), executor.GetInputPort("wam.state"))
     builder.Connect(station_system.GetOutputPort("contact_results"), executor.GetInputPort("contact_results"))
-    builder.Connect(executor.GetOutputPort("hand_command"), station_system.GetInputPort("hand.command"))
-    builder.Connect(executor.GetOutputPort("finger_preshape"), station_system.GetInputPort("hand.finger_preshape"))
+    builder.Connect(executor.GetOutputPort("hand.command"), station_system.GetInputPort("hand.command"))
+    builder.Connect(executor.GetOutputPort("hand.finger_preshape"), station_system.GetInputPort("hand.finger_preshape"))
     if arm:
-        builder.Connect(executor.GetOutputPort("wam_desired_state"), station_system.GetInputPort("wam.desired_state"))
+        builder.Connect(executor.GetOutputPort("wam.desired_state"), station_system.GetInputPort("wam.desired_state"))
 
 
 def _hold(q: np.ndarray, t: float):

@@ -32,10 +32,10 @@ class GravityCompensation(LeafSystem):
         actuators = sorted(plant.GetJointActuatorIndices(instance), key=int)
         # Each actuated joint's velocity index in the whole plant, in the instance's actuator order.
         self._velocity_rows = np.array([plant.get_joint_actuator(a).joint().velocity_start() for a in actuators])
-        self.DeclareVectorInputPort("plant_state", plant.num_multibody_states())
+        self._plant_state_port = self.DeclareVectorInputPort("plant_state", plant.num_multibody_states())
         self.DeclareVectorOutputPort("actuation", len(actuators), self._CalcActuation)
 
     def _CalcActuation(self, context: Context, output: BasicVector) -> None:
-        self._plant.SetPositionsAndVelocities(self._plant_context, self.get_input_port(0).Eval(context))
+        self._plant.SetPositionsAndVelocities(self._plant_context, self._plant_state_port.Eval(context))
         tau_g = self._plant.CalcGravityGeneralizedForces(self._plant_context)
         output.SetFromVector(-tau_g[self._velocity_rows])

@@ -258,7 +258,7 @@ class HandController(LeafSystem):
         self._index = _HandIndexing(plant, hand_instance)
         num_q = plant.num_positions(hand_instance)
         num_v = plant.num_velocities(hand_instance)
-        self.DeclareVectorInputPort("command", 2)
+        self._command_port = self.DeclareVectorInputPort("command", 2)
         self._preshape_port = self.DeclareVectorInputPort("finger_preshape", NUM_FINGERS)
         self._state_port = self.DeclareVectorInputPort("hand_state", num_q + num_v)
         self._actuation_port = self.DeclareVectorInputPort("hand_net_actuation", plant.num_actuators(hand_instance))
@@ -278,7 +278,7 @@ class HandController(LeafSystem):
         context.SetDiscreteState(self._drive_index, drive.to_vector())
 
     def _Update(self, context: Context, discrete_state: DiscreteValues) -> None:
-        command = self.get_input_port(0).Eval(context)
+        command = self._command_port.Eval(context)
         state = self._state_port.Eval(context)
         actuation = self._actuation_port.Eval(context)
         q = self._index.joint_positions(state)
@@ -301,6 +301,10 @@ class HandController(LeafSystem):
             preshape=preshape,
         )
         discrete_state.set_value(self._drive_index, new.to_vector())
+
+    def joint_angles(self, hand_state: np.ndarray) -> np.ndarray:
+        """The hand's joint angles in HAND_JOINTS.all order (rad), from its instance state [q; v]."""
+        return self._index.joint_positions(hand_state)
 
     def _CalcDesiredState(self, context: Context, output: BasicVector) -> None:
         drive = FingerDrive.from_vector(context.get_discrete_state(self._drive_index).value())

@@ -6,8 +6,8 @@ primitives:
     ExplorationSequencer ──phase──────────────┐
     ObjectEstimator ──estimate────────────────┴─> CompliantGraspSupervisor ──arm_source──> PortSwitch
     CameraTwistController ──wam.desired_state──────────────────────────────────────────┘    │
-    CompliantGraspSupervisor ──wam_desired_state──────────────────────────────────> PortSwitch ──> station
-    CompliantGraspSupervisor ──hand_command, finger_preshape──────────────────────────────────> station
+    CompliantGraspSupervisor ──wam.desired_state──────────────────────────────────> PortSwitch ──> station
+    CompliantGraspSupervisor ──hand.command, hand.finger_preshape─────────────────────────────────> station
 
 * **explore**: while the sequencer runs the primitives, the camera motion drives the arm (the switch
   routes it to the station) and the hand is held open.
@@ -19,7 +19,7 @@ primitives:
   (`GraspExecutor`), from where the exploration left the arm; the switch now routes the supervisor's
   arm command.
 
-If the object was never seen, or the arm cannot reach the chosen grasp, the sequence ends (Phase.DONE)
+If the object was never seen, or the arm cannot reach the chosen grasp, the sequence ends (GraspPhase.DONE)
 with that outcome instead of grasping.
 """
 
@@ -31,7 +31,8 @@ from pydrake.systems.framework import Context, DiagramBuilder, InputPortIndex
 from pydrake.systems.primitives import PortSwitch
 
 from drake_grasp.control.arm_motion import UNREACHABLE, ReachError
-from drake_grasp.control.grasp_executor import ConnectGraspExecutor, ExecutionTimes, GraspExecutor, _Progress
+from drake_grasp.control.grasp_executor import ConnectGraspExecutor, GraspExecutor, _Progress
+from drake_grasp.protocol import ExecutionTimes
 from drake_grasp.grasps import GRASP_OF_SHAPE, GraspPlan, GraspType, plan_compliant_grasp
 from drake_grasp.primitives.estimate import OBJECT_NOT_FOUND, ObjectEstimate
 from drake_grasp.primitives.sequencer import phase_value
@@ -59,13 +60,13 @@ class Decision:
 class CompliantGraspSupervisor(GraspExecutor):
     """Explores, decides the compliant grasp from the estimate, and executes it (module docstring).
 
-    Input ports (besides GraspExecutor's `wam_state` and `contact_results`):
+    Input ports (besides GraspExecutor's `wam.state` and `contact_results`):
         exploration_phase (1): the ExplorationSequencer's phase.
         object_estimate: the ObjectEstimator's estimate (abstract).
     Output ports (besides GraspExecutor's):
         arm_source: the InputPortIndex of the arm switch's port that drives the WAM: the camera
             motion while exploring (and after a sequence that ended without a grasp), the
-            supervisor's own `wam_desired_state` from the decision on.
+            supervisor's own `wam.desired_state` from the decision on.
     """
 
     def __init__(self, plant, scene_graph, wam, hand_bodies: list, q_start: np.ndarray, times: ExecutionTimes,
@@ -108,7 +109,7 @@ class CompliantGraspSupervisor(GraspExecutor):
         executed = self._forced_grasp or chosen
         plan = plan_compliant_grasp(executed, estimate.as_grasp_estimate())
         decision = Decision(t, estimate, chosen, executed, plan)
-        q_now = np.asarray(self.GetInputPort("wam_state").Eval(context), float)[:7]
+        q_now = np.asarray(self._wam_state_port.Eval(context), float)[:7]
         try:
             started = self._start_grasp(progress, plan, q_now, t)
         except ReachError as e:
@@ -116,23 +117,23 @@ class CompliantGraspSupervisor(GraspExecutor):
         return dataclasses.replace(started, decision=decision)
 
 
-def AddCompliantGraspSupervisor(builder: DiagramBuilder, station, station_system, primitives, sequencer,
+def AddCompliantGraspSupervisor(builder: DiagramBuilder, station, primitives, sequencer,
                                 q_start: np.ndarray, times: ExecutionTimes, forced_grasp: str | None = None
                                 ) -> CompliantGraspSupervisor:
     """Adds the supervisor and the arm switch, and connects them to the station, the primitives'
     estimator, the sequencer and the camera motion controller.
 
     Args:
-        builder: holds `station_system`, and the primitives added by
+        builder: holds the station's Diagram (`station.diagram`), and the primitives added by
             `perception.AddVisualPrimitives(..., connect_arm=False)` and `AddExplorationSequencer`.
-        station: the station (its plant, scene graph, arm and hand).
-        station_system: the station's Diagram in `builder`.
+        station: the station (its Diagram, plant, scene graph, arm and hand).
         primitives: `perception.VisualPrimitives`.
         sequencer: the ExplorationSequencer.
         q_start: the arm's joint angles at time 0, rad.
         times: the grasp sequence's timings (the scenario's protocol.execution).
         forced_grasp: execute this grasp instead of the chosen one.
     """
+    station_system = station.diagram
     switch = builder.AddNamedSystem("arm_command_switch", PortSwitch(14))
     camera_port = switch.DeclareInputPort("camera_motion")
     grasp_port = switch.DeclareInputPort("grasp")
@@ -141,7 +142,7 @@ def AddCompliantGraspSupervisor(builder: DiagramBuilder, station, station_system
         plant, station.scene_graph, station.wam, plant.GetBodyIndices(station.hand), q_start, times,
         (camera_port.get_index(), grasp_port.get_index()), forced_grasp))
     builder.Connect(primitives.camera_motion.GetOutputPort("wam.desired_state"), camera_port)
-    builder.Connect(supervisor.GetOutputPort("wam_desired_state"), grasp_port)
+    builder.Connect(supervisor.GetOutputPort("wam.desired_state"), grasp_port)
     builder.Connect(supervisor.GetOutputPort("arm_source"), switch.get_port_selector_input_port())
     builder.Connect(switch.get_output_port(), station_system.GetInputPort("wam.desired_state"))
     builder.Connect(sequencer.GetOutputPort("phase"), supervisor.GetInputPort("exploration_phase"))

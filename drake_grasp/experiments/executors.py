@@ -79,21 +79,68 @@ class LocalExecutor(Executor):
             return
         # "spawn": a fresh interpreter per worker (forking a process that holds Drake objects is unsafe).
         context = multiprocessing.get_context("spawn")
-        pool = concurrent.futures.ProcessPoolExecutor(max_workers=workers, mp_context=context)
+        pool = concurrent.futures.ProcessPoolExecutor(max_workers=workers, mp_context=context,
+                                                      initializer=die_with_parent, initargs=(os.getpid(),))
+        futures = {}
         try:
             futures = {pool.submit(fn, *args): index for index, args in enumerate(tasks)}
             for future in concurrent.futures.as_completed(futures):
                 yield futures[future], future.result()
         finally:
-            # On an error or an interrupt, tasks not yet started are dropped; running ones finish.
+            # On an error, an interrupt (Ctrl-C, SIGTERM) or an early close, the running tasks are
+            # stopped with their workers (their results would be thrown away) and the rest dropped.
+            if not all(f.done() for f in futures):
+                _terminate_workers(pool)
             pool.shutdown(wait=True, cancel_futures=True)
+
+
+def _terminate_workers(pool: concurrent.futures.ProcessPoolExecutor) -> None:
+    """Sends SIGTERM to the pool's worker processes (the pool then notices them gone and shuts down)."""
+    for process in list((getattr(pool, "_processes", None) or {}).values()):
+        if process.is_alive():
+            process.terminate()
+
+
+def die_with_parent(parent_pid: int, poll_seconds: float = 1.0) -> None:
+    """A worker's initializer: the worker ends when the process that started it ends, however it ends
+    (even `kill -9`, which gives the parent no chance to stop its workers).
+
+    On Linux the kernel sends the worker SIGTERM when its parent dies (prctl PR_SET_PDEATHSIG); as a
+    fallback elsewhere, a daemon thread checks every `poll_seconds` whether the parent is still this
+    process's parent, and ends the process if not. The pool's helper processes (multiprocessing's
+    resource tracker) end by themselves once no process holds their pipe.
+    """
+    import signal
+    import threading
+    import time
+
+    if sys.platform.startswith("linux"):
+        import ctypes
+
+        PR_SET_PDEATHSIG = 1
+        try:
+            libc = ctypes.CDLL(None, use_errno=True)
+            libc.prctl(PR_SET_PDEATHSIG, signal.SIGTERM, 0, 0, 0)
+        except (OSError, AttributeError):
+            pass
+    if os.getppid() != parent_pid:  # the parent died before prctl took effect
+        os._exit(1)
+
+    def watch():
+        while True:
+            time.sleep(poll_seconds)
+            if os.getppid() != parent_pid:
+                os._exit(1)
+
+    threading.Thread(target=watch, name="die-with-parent", daemon=True).start()
 
 
 class RayExecutor(Executor):
     """Runs each task as a Ray task (one CPU each), on a local Ray instance or a cluster.
 
     Ray starts on first use. Without `address` it starts a local instance with `workers` CPUs (default:
-    every core) and no dashboard, and `close()` shuts it down; with `address` ("auto", "HOST:PORT" or
+    every core) and no dashboard, and `close()` shuts it down (if this process is killed instead, a
+    `reaper` process ends the instance's processes); with `address` ("auto", "HOST:PORT" or
     "ray://HOST:10001") it joins that cluster, whose CPUs decide how many tasks run at once; the
     package must be installed on its nodes. If this process already has Ray initialised (a test, a
     notebook), that instance is used and left running.
@@ -113,6 +160,7 @@ class RayExecutor(Executor):
         self.progress = progress
         self._started = False
         self._ready = False
+        self._reaper = None
 
     def describe(self) -> str:
         if self.address:
@@ -135,6 +183,9 @@ class RayExecutor(Executor):
                     _probe(self.address)
                     ray.init(address=self.address, **kwargs)
                 else:  # "local": a new instance, never one a `ray start` left running on this machine
+                    from drake_grasp.experiments import reaper
+
+                    self._reaper = reaper.start()
                     ray.init(address="local", num_cpus=self.workers, **kwargs)
             except Exception as e:  # Ray raises ConnectionError, RuntimeError, ... : report one line
                 where = f"join the Ray cluster at {self.address}" if self.address else "start a local Ray instance"
@@ -168,6 +219,9 @@ class RayExecutor(Executor):
             import ray
 
             ray.shutdown()
+        if self._reaper is not None:
+            self._reaper.stop()
+            self._reaper = None
         self._started = self._ready = False
 
 

@@ -11,7 +11,8 @@ Cylinders lie along the object's x with a fixed length of 0.30 m (`objects.CYLIN
 so an error along x runs along the axis and an error along y across it.
 
 The sweep is resumable: each (shape, size) is one task, whose rows are appended to ``fig4.csv`` as
-soon as it finishes; a rerun computes only what is missing.
+soon as it finishes, each with the fingerprint of the sweep's settings (`Fig4Config.fingerprint`); a
+rerun computes only what is missing for the current fingerprint.
 """
 
 import contextlib
@@ -26,11 +27,14 @@ import numpy as np
 from drake_grasp.experiments.results import save_figure
 
 FIELDS = [
-    "shape", "size", "axis", "error", "epsilon", "volume", "num_contacts", "fingers_touching",
+    "fingerprint", "shape", "size", "axis", "error", "epsilon", "volume", "num_contacts", "fingers_touching",
     "palm_touching", "links", "approach_distance", "spread", "proximal_1", "proximal_2", "proximal_3",
     "distal_1", "distal_2", "distal_3",
 ]
-KEY = ["shape", "size", "axis", "error"]
+KEY = ["fingerprint", "shape", "size", "axis", "error"]
+TYPES = {"fingerprint": "hex", "num_contacts": "int", "fingers_touching": "int", "palm_touching": "int",
+         **{name: "float" for name in ("size", "error", "epsilon", "volume", "approach_distance", "spread",
+                                       "proximal_1", "proximal_2", "proximal_3", "distal_1", "distal_2", "distal_3")}}
 SHAPES = ("sphere", "cube", "cylinder")
 AXES = ("x", "y")
 
@@ -52,6 +56,13 @@ class Fig4Config:
     friction: float = 0.5
     num_edges: int = 8
     start_clearance: float = 0.10
+
+    def fingerprint(self) -> str:
+        """The fingerprint of what decides a row besides its key (shape, size, axis, error): the ε
+        metric's friction and cone edges, the start clearance, and the package version."""
+        from drake_grasp.experiments.fingerprint import sweep_fingerprint
+
+        return sweep_fingerprint("fig4", self.friction, self.num_edges, self.start_clearance)
 
     @classmethod
     def full(cls) -> "Fig4Config":
@@ -143,14 +154,21 @@ def run_fig4(config: Fig4Config, out_dir: pathlib.Path, workers: int | None = No
     Tasks run on `executor` (`executors.make_executor`), or with none on a local executor of
     `workers` processes (default: every core).
     """
+    from drake_grasp.experiments.lock import results_lock
+
+    with results_lock(out_dir):
+        return _run_fig4(config, out_dir, workers, progress, executor)
+
+
+def _run_fig4(config: Fig4Config, out_dir: pathlib.Path, workers, progress, executor) -> list[dict]:
     from drake_grasp.experiments.executors import LocalExecutor
     from drake_grasp.experiments.results import ResultsTable
 
-    out_dir.mkdir(parents=True, exist_ok=True)
-    table = ResultsTable(out_dir / "fig4.csv", FIELDS, KEY)
+    table = ResultsTable(out_dir / "fig4.csv", FIELDS, KEY, TYPES)
+    fingerprint = config.fingerprint()
     tasks = [
         (shape, size, config) for shape in SHAPES for size in config.sizes
-        if not all((shape, size, axis, error) in table for axis in AXES for error in config.errors)
+        if not all((fingerprint, shape, size, axis, error) in table for axis in AXES for error in config.errors)
     ]
     total = len(SHAPES) * len(config.sizes)
     done = total - len(tasks)
@@ -160,14 +178,14 @@ def run_fig4(config: Fig4Config, out_dir: pathlib.Path, workers: int | None = No
     start = time.perf_counter()
     with contextlib.closing(executor.imap_unordered(run_task, tasks)) as results:
         for index, rows in results:
-            table.append(rows)
+            table.append([dict(row, fingerprint=fingerprint) for row in rows])
             done += 1
             shape, size, _ = tasks[index]
             print(f"fig4: {done}/{total} tasks ({shape} {size * 100:.1f} cm) {time.perf_counter() - start:.0f} s",
                   file=progress)
     wanted = {(s, str(float(z)), a, str(float(e))) for s in SHAPES for z in config.sizes for a in AXES
               for e in config.errors}
-    return [r for r in table.rows() if (r["shape"], r["size"], r["axis"], r["error"]) in wanted]
+    return [r for r in table.rows_of(fingerprint) if (r["shape"], r["size"], r["axis"], r["error"]) in wanted]
 
 
 # --- Analysis. ------------------------------------------------------------------------------------

@@ -9,7 +9,8 @@ per object and overall, beside the paper's 95.6 % (86/90).
 
 Trials are independent, seeded (trial i of every object and grasp uses seed `seed + i`, the same
 seeds as every other method), run in a local process pool, and written to ``fig6.csv`` as they
-finish: rerunning the command after an interruption resumes.
+finish, each with the fingerprint of its inputs: rerunning the command after an interruption
+resumes, and only records of the current inputs are counted.
 """
 
 import dataclasses
@@ -165,12 +166,11 @@ def run_sweep(config: Fig6Config, out_dir: pathlib.Path, workers: int | None = N
 
     Returns (per-object per-grasp stats, figure paths, summary lines, number of trials).
     """
+    from drake_grasp.experiments.lock import results_lock
     from drake_grasp.experiments.runner import run_trials
 
-    out_dir.mkdir(parents=True, exist_ok=True)
-    specs = trial_specs(config, scenario_file, scenario_name)
-    table = run_trials(specs, out_dir / "fig6.csv", workers=workers, label="fig6", executor=executor)
-    wanted = {(s.object, s.method, s.grasp, str(s.seed)) for s in specs}
-    rows = [r for r in table.rows() if (r["object"], r["method"], r["grasp"], r["seed"]) in wanted]
-    stats = grasp_stats(rows, config.objects)
-    return stats, plot(stats, out_dir), summary_lines(stats), len(rows)
+    with results_lock(out_dir):
+        specs = trial_specs(config, scenario_file, scenario_name)
+        rows = run_trials(specs, out_dir / "fig6.csv", workers=workers, label="fig6", executor=executor)
+        stats = grasp_stats(rows, config.objects)
+        return stats, plot(stats, out_dir), summary_lines(stats), len(rows)

@@ -64,8 +64,19 @@ class Fig7Config:
             raise ValueError(f"fig7: unknown energy '{self.energy}' (contact, contact-quality)")
 
 
-def plan_path(out_dir: pathlib.Path, obj: str, config: Fig7Config) -> pathlib.Path:
-    return out_dir / "plans" / f"{obj}_{config.energy}_{config.steps}_seed{config.seed}_table.json"
+def plan_path(out_dir: pathlib.Path, obj: str, config: Fig7Config, fingerprint: str) -> pathlib.Path:
+    """Where an object's plan is kept: named by the object (a file by its stem), the planner's
+    settings and the fingerprint of its inputs (object content, scenario, version)."""
+    return out_dir / "plans" / f"{pathlib.Path(obj).stem if '/' in obj else obj}_{config.energy}_{config.steps}" \
+        f"_seed{config.seed}_table_{fingerprint}.json"
+
+
+def plan_fingerprint(obj: str, scenario_file: str = "", scenario_name: str = "default") -> str:
+    """The fingerprint of a plan's inputs other than the planner's settings: the object's content and
+    the scenario (whose arm decides which grasps are reachable)."""
+    from drake_grasp.experiments.fingerprint import digest, object_fingerprint, scenario_fingerprint
+
+    return digest("plan", object_fingerprint(obj), scenario_fingerprint(scenario_file, scenario_name))
 
 
 def plan_object(obj: str, config: Fig7Config, scenario_file: str = "", scenario_name: str = "default"):
@@ -86,22 +97,24 @@ def ensure_plans(out_dir: pathlib.Path, config: Fig7Config, executor, progress=s
                  scenario_file: str = "", scenario_name: str = "default") -> dict[str, dict]:
     """The planner's result for each object: read back from its JSON file, or planned on `executor`
     (objects in parallel) and written as each plan arrives."""
+    from drake_grasp.experiments.results import write_atomically
+
     plans = {}
     todo = []
+    paths = {obj: plan_path(out_dir, obj, config, plan_fingerprint(obj, scenario_file, scenario_name))
+             for obj in config.objects}
     for obj in config.objects:
-        path = plan_path(out_dir, obj, config)
-        if path.exists():
-            plans[obj] = json.loads(path.read_text())
+        plan = _read_plan(paths[obj], progress)
+        if plan is not None:
+            plans[obj] = plan
         else:
             todo.append((obj, config, scenario_file, scenario_name))
     with contextlib.closing(executor.imap_unordered(plan_object, todo)) as results:
         for index, (plan, seconds) in results:
             obj = todo[index][0]
-            path = plan_path(out_dir, obj, config)
+            path = paths[obj]
             path.parent.mkdir(parents=True, exist_ok=True)
-            tmp = path.with_suffix(".tmp")
-            tmp.write_text(json.dumps(plan, indent=1))
-            tmp.replace(path)
+            write_atomically(path, json.dumps(plan, indent=1))
             plans[obj] = plan
             eps = ", ".join(f"{g['epsilon']:.3f}" for g in plan["grasps"])
             ranks = ", ".join(str(g["planner_rank"]) for g in plan["executed"])
@@ -109,6 +122,20 @@ def ensure_plans(out_dir: pathlib.Path, config: Fig7Config, executor, progress=s
                   f"eps of the top 3 after autograsp [{eps}]; executing ranks [{ranks}] of "
                   f"{len(plan['candidates'])} (the best the arm can reach)", file=progress, flush=True)
     return {obj: plans[obj] for obj in config.objects}
+
+
+def _read_plan(path: pathlib.Path, progress) -> dict | None:
+    """A plan written earlier, or None if there is none or it is damaged (then it is planned again)."""
+    if not path.exists():
+        return None
+    try:
+        plan = json.loads(path.read_text())
+        if isinstance(plan, dict) and {"grasps", "executed", "candidates"} <= plan.keys():
+            return plan
+    except (OSError, ValueError):
+        pass
+    print(f"{path}: damaged plan, planning again", file=progress, flush=True)
+    return None
 
 
 def reachable_grasps(plan: dict, obj: str, scenario_file: str = "", scenario_name: str = "default",
@@ -288,26 +315,31 @@ def run_comparison(config: Fig7Config, out_dir: pathlib.Path, fig6_dir: pathlib.
     Returns (list of Comparison, figure paths, summary lines).
     """
     from drake_grasp.experiments.executors import LocalExecutor
-    from drake_grasp.experiments.results import ResultsTable
-    from drake_grasp.experiments.runner import TRIAL_FIELDS, TRIAL_KEY, run_trials
+    from drake_grasp.experiments.lock import results_lock
+    from drake_grasp.experiments.results import check_results_file
+    from drake_grasp.experiments.runner import TRIAL_FIELDS, fingerprints, run_trials, select, trial_table
 
-    out_dir.mkdir(parents=True, exist_ok=True)
-    executor = executor or LocalExecutor(workers)
-    plans = ensure_plans(out_dir, config, executor, scenario_file=scenario_file, scenario_name=scenario_name)
-    table = run_trials(eigengrasp_specs(plans, config, scenario_file, scenario_name), out_dir / "fig7.csv",
-                       label="fig7", executor=executor)
-    f6_config = fig6.Fig6Config(objects=config.objects, trials=config.trials, seed=config.seed,
-                                method=config.compliant_method)
-    f6_specs = fig6.trial_specs(f6_config, scenario_file, scenario_name)
     fig6_csv = pathlib.Path(fig6_dir) / "fig6.csv"
-    reused = ResultsTable(fig6_csv, TRIAL_FIELDS, TRIAL_KEY).rows() if fig6_csv.exists() else []
-    have = {(r["object"], r["method"], r["grasp"], r["seed"]) for r in reused}
-    missing = [s for s in f6_specs if (s.object, s.method, s.grasp, str(s.seed)) not in have]
-    own = run_trials(missing, out_dir / "fig7_compliant.csv", label="fig7 compliant", executor=executor).rows()
-    wanted = {(s.object, s.method, s.grasp, str(s.seed)) for s in f6_specs}
-    compliant_rows = [r for r in reused + own if (r["object"], r["method"], r["grasp"], r["seed"]) in wanted]
-    source = (f"{len(compliant_rows) - len(missing)} trials reused from {fig6_csv}, {len(missing)} run here"
-              f" (method {config.compliant_method})")
-    comparison = compare(config.objects, table.rows(), fig6.grasp_stats(compliant_rows, config.objects),
-                         config.plan_tag)
-    return comparison, plot(comparison, out_dir, config.energy), summary_lines(comparison, config.energy, source)
+    with results_lock(out_dir):
+        for path in (out_dir / "fig7.csv", out_dir / "fig7_compliant.csv", fig6_csv):  # before planning
+            check_results_file(path, TRIAL_FIELDS)
+        executor = executor or LocalExecutor(workers)
+        plans = ensure_plans(out_dir, config, executor, scenario_file=scenario_file, scenario_name=scenario_name)
+        eigen_rows = run_trials(eigengrasp_specs(plans, config, scenario_file, scenario_name), out_dir / "fig7.csv",
+                                label="fig7", executor=executor)
+        f6_config = fig6.Fig6Config(objects=config.objects, trials=config.trials, seed=config.seed,
+                                    method=config.compliant_method)
+        f6_specs = fig6.trial_specs(f6_config, scenario_file, scenario_name)
+        f6_prints = fingerprints(f6_specs)
+        # Fig. 6's records of the same inputs (same fingerprints) are reused; its file is only read.
+        reused = select(trial_table(fig6_csv, read_only=True).rows(), f6_specs, f6_prints) \
+            if fig6_csv.is_file() else []
+        have = {tuple(r[k] for k in ("object", "method", "grasp", "seed")) for r in reused}
+        missing = [s for s in f6_specs if (s.object, s.method, s.grasp, str(s.seed)) not in have]
+        own = run_trials(missing, out_dir / "fig7_compliant.csv", label="fig7 compliant", executor=executor)
+        compliant_rows = reused + own
+        source = (f"{len(reused)} trials reused from {fig6_csv}, {len(missing)} run here"
+                  f" (method {config.compliant_method})")
+        comparison = compare(config.objects, eigen_rows, fig6.grasp_stats(compliant_rows, config.objects),
+                             config.plan_tag)
+        return comparison, plot(comparison, out_dir, config.energy), summary_lines(comparison, config.energy, source)

@@ -24,7 +24,6 @@ import dataclasses
 import io
 import json
 import pathlib
-import sys
 
 import numpy as np
 
@@ -168,9 +167,9 @@ def write_csv(path: pathlib.Path, rows: list[NovelRow]) -> None:
         writer.writerow([r.object, r.object_class, r.chosen_grasp, r.chosen_successes, r.chosen_trials,
                          f"{lo:.4f}", f"{hi:.4f}", r.planner_successes, r.planner_trials,
                          f"{r.planner_best:.4f}", json.dumps(r.grasp_successes)])
-    tmp = path.with_name(path.name + ".tmp")
-    tmp.write_text(buffer.getvalue())
-    tmp.replace(path)
+    from drake_grasp.experiments.results import write_atomically
+
+    write_atomically(path, buffer.getvalue())
 
 
 def plot(rows: list[NovelRow], out_dir: pathlib.Path) -> list[pathlib.Path]:
@@ -217,45 +216,41 @@ def ensure_objects(directory: pathlib.Path, count: int, seed: int) -> list[dict]
 
 
 def run_study(config: NovelConfig, out_dir: pathlib.Path, objects: list[dict], executor, scenario_file: str = "",
-              scenario_name: str = "default", progress=sys.stderr):
+              scenario_name: str = "default"):
     """Runs (or resumes) both methods on `objects` (manifest entries: {"file": path, "class": name}) and
-    writes novel.csv, novel.png/svg and summary.md under out_dir.
+    writes novel.csv, novel.png/svg and summary.md under out_dir (whose lock it holds meanwhile).
 
     Returns (rows, figure paths, summary lines).
     """
+    from drake_grasp.experiments.lock import results_lock
+    from drake_grasp.experiments.results import check_results_file, write_atomically
+    from drake_grasp.experiments.runner import TRIAL_FIELDS, fingerprints, select, trial_table
+
     out_dir.mkdir(parents=True, exist_ok=True)
-    names = tuple(entry["file"] for entry in objects)
-    config6 = fig6.Fig6Config(objects=names, trials=config.trials, seed=config.seed, method="compliant")
-    stats6, _, _, _ = fig6.run_sweep(config6, out_dir / "compliant", scenario_file=scenario_file,
-                                     scenario_name=scenario_name, executor=executor)
-    config7 = fig7.Fig7Config(objects=names, trials=config.trials, seed=config.seed, steps=config.steps,
-                              energy=config.energy)
-    comparison, _, _ = fig7.run_comparison(config7, out_dir / "eigengrasp", out_dir / "compliant",
-                                           scenario_file=scenario_file, scenario_name=scenario_name,
-                                           executor=executor)
-    rows = study_rows(objects, stats6, comparison)
-    compliant_rows = fig6_rows(out_dir / "compliant" / "fig6.csv", config6, scenario_file, scenario_name)
-    planner_rows = [r for r in _csv_rows(out_dir / "eigengrasp" / "fig7.csv")
-                    if r["object"] in names and r["grasp"].startswith(config7.plan_tag + "#")]
-    lines = summary_lines(rows, chosen_trial_rows(compliant_rows, rows), planner_rows, config)
-    write_csv(out_dir / "novel.csv", rows)
-    figures = plot(rows, out_dir)
-    summary = out_dir / "summary.md"
-    tmp = summary.with_name(summary.name + ".tmp")
-    tmp.write_text("# Novel objects\n\n" + "\n".join(lines) + "\n")
-    tmp.replace(summary)
-    return rows, figures, lines
-
-
-def fig6_rows(csv_path: pathlib.Path, config6, scenario_file: str, scenario_name: str) -> list[dict]:
-    """The records of exactly this sweep's compliant trials."""
-    wanted = {(s.object, s.method, s.grasp, str(s.seed)) for s in fig6.trial_specs(config6, scenario_file,
-                                                                                     scenario_name)}
-    return [r for r in _csv_rows(csv_path) if (r["object"], r["method"], r["grasp"], r["seed"]) in wanted]
-
-
-def _csv_rows(path: pathlib.Path) -> list[dict]:
-    from drake_grasp.experiments.results import ResultsTable
-    from drake_grasp.experiments.runner import TRIAL_FIELDS, TRIAL_KEY
-
-    return ResultsTable(path, TRIAL_FIELDS, TRIAL_KEY).rows() if path.exists() else []
+    with results_lock(out_dir):
+        for path in ("compliant/fig6.csv", "eigengrasp/fig7.csv", "eigengrasp/fig7_compliant.csv"):
+            check_results_file(out_dir / path, TRIAL_FIELDS)  # before any work
+        names = tuple(entry["file"] for entry in objects)
+        config6 = fig6.Fig6Config(objects=names, trials=config.trials, seed=config.seed, method="compliant")
+        stats6, _, _, _ = fig6.run_sweep(config6, out_dir / "compliant", scenario_file=scenario_file,
+                                         scenario_name=scenario_name, executor=executor)
+        config7 = fig7.Fig7Config(objects=names, trials=config.trials, seed=config.seed, steps=config.steps,
+                                  energy=config.energy)
+        comparison, _, _ = fig7.run_comparison(config7, out_dir / "eigengrasp", out_dir / "compliant",
+                                               scenario_file=scenario_file, scenario_name=scenario_name,
+                                               executor=executor)
+        rows = study_rows(objects, stats6, comparison)
+        # The trials' own records (this run's fingerprints only), for the failure reasons.
+        specs6 = fig6.trial_specs(config6, scenario_file, scenario_name)
+        compliant_rows = select(trial_table(out_dir / "compliant" / "fig6.csv", read_only=True).rows(), specs6,
+                                fingerprints(specs6))
+        plans = fig7.ensure_plans(out_dir / "eigengrasp", config7, executor, scenario_file=scenario_file,
+                                  scenario_name=scenario_name)  # read back: planned above
+        specs7 = fig7.eigengrasp_specs(plans, config7, scenario_file, scenario_name)
+        planner_rows = select(trial_table(out_dir / "eigengrasp" / "fig7.csv", read_only=True).rows(), specs7,
+                              fingerprints(specs7))
+        lines = summary_lines(rows, chosen_trial_rows(compliant_rows, rows), planner_rows, config)
+        write_csv(out_dir / "novel.csv", rows)
+        figures = plot(rows, out_dir)
+        write_atomically(out_dir / "summary.md", "# Novel objects\n\n" + "\n".join(lines) + "\n")
+        return rows, figures, lines

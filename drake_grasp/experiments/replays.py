@@ -12,6 +12,7 @@ import pathlib
 import sys
 
 from drake_grasp.experiments.report_page import Replay
+from drake_grasp.experiments.results import write_atomically
 
 
 def _record_replay(spec, path: str) -> dict:
@@ -42,7 +43,7 @@ def ensure_replays(out_dir: pathlib.Path, specs: list, executor, progress=sys.st
     for index, outcome in executor.imap_unordered(_record_replay, tasks):
         spec, fingerprint, stem = todo[index]
         info = {"fingerprint": fingerprint, **outcome}
-        (out_dir / f"{stem}.json").write_text(json.dumps(info))
+        write_atomically(out_dir / f"{stem}.json", json.dumps(info))
         replays[stem] = (spec, info)
         print(f"replay: {spec.object} {spec.method}: {'held' if outcome['success'] else outcome['failure']}",
               file=progress, flush=True)

@@ -4,6 +4,8 @@ beyond the paper, both methods on novel objects.
 `run` runs (or resumes) the three experiments into one output folder and writes ``report.md``: for each
 claim of the paper, the paper's number or statement, ours, and whether ours agrees. The verdicts are
 computed from the measured results with the rules stated beside each claim; nothing is tuned to agree.
+The same text is also written as ``report.html``, the results page (`report_page`): figures inline, and
+one Meshcat replay per object and method (`replays`), all of it openable offline in a browser.
 """
 
 import dataclasses
@@ -14,6 +16,9 @@ import time
 import numpy as np
 
 from drake_grasp.experiments import fig4, fig6, fig7, novel
+from drake_grasp.experiments.replays import ensure_replays
+from drake_grasp.experiments.report_page import write_report_html
+from drake_grasp.experiments.results import write_atomically
 
 # Written by scripts/bench_scaling.py; quoted in the report when present.
 SCALING_FILE = pathlib.Path(__file__).resolve().parents[2] / "docs" / "results" / "scaling.json"
@@ -175,21 +180,31 @@ def write_report(path: pathlib.Path, claims: list[Claim], wall_time: float, quic
                   "[novel/summary.md](novel/summary.md)), through the runner, seeds and success test of Fig. 6 "
                   "and Fig. 7.", "", *novel_lines, ""]
     lines += scaling_lines(scaling_file)
-    tmp = path.with_suffix(".tmp")
-    tmp.write_text("\n".join(lines))
-    tmp.replace(path)
+    write_atomically(path, "\n".join(lines))
 
 
 def run(out_dir: pathlib.Path, quick: bool, workers: int | None = None, seed: int = 0,
         energy: str = "contact-quality", executor=None) -> tuple[pathlib.Path, list[Claim], float]:
     """Runs (or resumes) Fig. 4, 6 and 7 under out_dir and writes out_dir/report.md. Everything runs on
     `executor` (`executors.make_executor`), or with none on a local executor of `workers` processes."""
+    from drake_grasp.experiments.lock import results_lock
+    from drake_grasp.experiments.results import check_results_file
+    from drake_grasp.experiments.runner import TRIAL_FIELDS
+
+    with results_lock(out_dir):
+        # Every results file this run will use, checked before the first sweep starts.
+        check_results_file(out_dir / "fig4" / "fig4.csv", fig4.FIELDS)
+        for path in ("fig6/fig6.csv", "fig7/fig7.csv", "fig7/fig7_compliant.csv"):
+            check_results_file(out_dir / path, TRIAL_FIELDS)
+        return _run(out_dir, quick, workers, seed, energy, executor)
+
+
+def _run(out_dir, quick, workers, seed, energy, executor):
     from drake_grasp.experiments.executors import LocalExecutor
     from drake_grasp.objects import PAPER_OBJECTS
 
     executor = executor or LocalExecutor(workers)
     start = time.perf_counter()
-    out_dir.mkdir(parents=True, exist_ok=True)
     resumed = {name: _rows_on_disk(out_dir / name / f"{name}.csv") for name in ("fig4", "fig6", "fig7")}
     config4 = fig4.Fig4Config.quick() if quick else fig4.Fig4Config.full()
     rows4 = fig4.run_fig4(config4, out_dir / "fig4", executor=executor)
@@ -213,12 +228,29 @@ def run(out_dir: pathlib.Path, quick: bool, workers: int | None = None, seed: in
     report = out_dir / "report.md"
     write_report(report, claims, wall, quick, energy, figures, {k: f"{v} rows" for k, v in resumed.items() if v},
                  executor.describe(), novel_lines=novel_lines)
+    replays = ensure_replays(out_dir / "replays", replay_specs(config6, config7, out_dir / "fig7", executor),
+                             executor)
+    write_report_html(out_dir / "report.html", report.read_text(), replays)
     return report, claims, wall
 
 
+def replay_specs(config6, config7, fig7_dir: pathlib.Path, executor) -> list:
+    """One trial per object and method for the results page (the first trial's seed): the
+    compliance-centric algorithm's own choice on each Fig. 6 object, the planner's best reachable
+    grasp on each Fig. 7 object."""
+    from drake_grasp.experiments.runner import TrialSpec
+
+    specs = [TrialSpec(obj, "compliant", "", config6.seed) for obj in config6.objects]
+    plans = fig7.ensure_plans(fig7_dir, config7, executor)  # read back: planned by the comparison
+    first = {}
+    for spec in fig7.eigengrasp_specs(plans, config7):
+        first.setdefault(spec.object, spec)
+    return specs + list(first.values())
+
+
 def _rows_on_disk(csv_path: pathlib.Path) -> int:
-    """Rows a results file already holds (what a resumed run does not compute again)."""
-    if not csv_path.exists():
+    """Rows a results file already holds (of any fingerprint: a figure uses those of its inputs)."""
+    if not csv_path.is_file():
         return 0
-    with open(csv_path) as f:
+    with open(csv_path, "rb") as f:
         return max(0, sum(1 for _ in f) - 1)

@@ -2,8 +2,9 @@
 
 A trial is described by plain data (a `TrialSpec`): the worker builds its own station and Diagram
 (Drake Diagrams and Contexts do not pickle), runs it, and returns the record as a plain dict. Records
-go to a resumable CSV (`results.ResultsTable`) keyed by (object, method, grasp, seed): rerunning the
-same sweep after an interruption computes only the missing trials.
+go to a resumable CSV (`results.ResultsTable`) keyed by (fingerprint, object, method, grasp, seed):
+rerunning the same sweep after an interruption computes only the missing trials, and a rerun with
+other inputs (scenario, object file, ...: `fingerprint.trial_fingerprint`) computes its own.
 """
 
 import contextlib
@@ -18,11 +19,43 @@ from drake_grasp.experiments.executors import Executor, LocalExecutor
 from drake_grasp.experiments.results import ResultsTable
 
 TRIAL_FIELDS = [
-    "object", "method", "grasp", "seed", "success", "failure", "lift", "slip_distance", "slip_angle",
+    "fingerprint", "object", "method", "grasp", "seed", "success", "failure", "lift", "slip_distance", "slip_angle",
     "contacts_after_close", "contacts_at_end", "approach_stopped_on_contact", "estimate_source",
     "finger_angles", "breakaway", "breakaway_angles", "variation", "sim_time", "wall_time", "detail", "extra",
 ]
-TRIAL_KEY = ["object", "method", "grasp", "seed"]
+TRIAL_KEY = ["fingerprint", "object", "method", "grasp", "seed"]
+TRIAL_TYPES = {
+    "fingerprint": "hex", "seed": "int", "success": "bool", "lift": "float", "slip_distance": "float",
+    "slip_angle": "float", "approach_stopped_on_contact": "bool", "finger_angles": "json", "breakaway": "json",
+    "breakaway_angles": "json", "variation": "json", "sim_time": "float", "wall_time": "float", "extra": "json",
+}
+
+
+def trial_table(csv_path: pathlib.Path, read_only: bool = False) -> ResultsTable:
+    """The results file of trials at csv_path."""
+    return ResultsTable(csv_path, TRIAL_FIELDS, TRIAL_KEY, TRIAL_TYPES, read_only=read_only)
+
+
+def fingerprints(specs: list["TrialSpec"]) -> list[str]:
+    """Each spec's fingerprint (`fingerprint.trial_fingerprint`), reading each scenario and object
+    file once."""
+    from drake_grasp.experiments.fingerprint import object_fingerprint, scenario_fingerprint, trial_fingerprint
+
+    scenarios, objects = {}, {}
+    out = []
+    for s in specs:
+        where = (s.scenario_file, s.scenario_name)
+        if where not in scenarios:
+            scenarios[where] = scenario_fingerprint(*where)
+        if s.object not in objects:
+            objects[s.object] = object_fingerprint(s.object)
+        out.append(trial_fingerprint(s, scenarios[where], objects[s.object]))
+    return out
+
+
+def spec_key(spec: "TrialSpec", fingerprint: str) -> tuple:
+    """A spec's row key in a trial table."""
+    return (fingerprint, spec.object, spec.method, spec.grasp, spec.seed)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -33,7 +66,8 @@ class TrialSpec:
         object: catalogue name, primitive or mesh path.
         method: "oracle" (compliant grasp from ground truth), "compliant" (from the camera), or
             "eigengrasp" (a planned grasp, given in `planned`).
-        grasp: "spherical" | "cylindrical" | "box" for compliant methods; a label for planned grasps.
+        grasp: "spherical" | "cylindrical" | "box" for compliant methods ("" with "compliant": the
+            algorithm's own choice); a label for planned grasps.
         seed: the trial's seed (its variation; shared by every method).
         scenario_file, scenario_name: the station scenario.
         planned: for planned grasps: {"X_OH": 4x4 list, "joint_angles": 8 floats}.
@@ -48,15 +82,16 @@ class TrialSpec:
     planned: dict | None = None
 
 
-def run_one(spec: TrialSpec) -> dict:
-    """Runs one trial in this process; returns its record as a dict of CSV-ready values."""
+def run_one(spec: TrialSpec, replay_html: str | None = None) -> dict:
+    """Runs one trial in this process; returns its record as a dict of CSV-ready values. With
+    `replay_html`, the trial also writes a Meshcat replay there (the record is the same)."""
     from drake_grasp.objects import pose_warnings_announced
 
     with pose_warnings_announced():
-        return _run_one(spec)
+        return _run_one(spec, replay_html)
 
 
-def _run_one(spec: TrialSpec) -> dict:
+def _run_one(spec: TrialSpec, replay_html: str | None = None) -> dict:
     from drake_grasp.grasps import oracle_estimate, plan_compliant_grasp, planned_grasp
     from drake_grasp.objects import resolve_object
     from drake_grasp.station import DEFAULT_SCENARIO_FILE, load_scenario
@@ -65,7 +100,9 @@ def _run_one(spec: TrialSpec) -> dict:
     scenario = load_scenario(spec.scenario_file or DEFAULT_SCENARIO_FILE, spec.scenario_name)
     obj = resolve_object(spec.object)
     if spec.method == "compliant":
-        record = run_compliant_trial(scenario, obj, seed=spec.seed, grasp=spec.grasp)
+        # An empty grasp runs the algorithm's own choice; a named one is forced (Fig. 6's protocol).
+        record = run_compliant_trial(scenario, obj, seed=spec.seed, grasp=spec.grasp or None,
+                                     replay_html=replay_html)
         return _row(spec, record, {"resemblance": record.resemblances, "chosen": record.chosen_grasp,
                                    "estimate_errors": record.estimate_errors})
     if spec.method == "oracle":
@@ -86,7 +123,8 @@ def _run_one(spec: TrialSpec) -> dict:
         extra = dict(spec.planned)
     else:
         raise ValueError(f"unknown method '{spec.method}'")
-    record = run_trial(scenario, obj, plan, seed=spec.seed, method=spec.method, grasp=spec.grasp)
+    record = run_trial(scenario, obj, plan, seed=spec.seed, method=spec.method, grasp=spec.grasp,
+                       replay_html=replay_html)
     return _row(spec, record, extra)
 
 
@@ -112,8 +150,8 @@ def _finite(value):
 
 
 def run_trials(specs: list[TrialSpec], csv_path: pathlib.Path, workers: int | None = None,
-               progress=sys.stderr, label: str = "trials", executor: Executor | None = None) -> ResultsTable:
-    """Runs the specs not yet in csv_path (resumable); returns the table.
+               progress=sys.stderr, label: str = "trials", executor: Executor | None = None) -> list[dict]:
+    """Runs the specs not yet in csv_path (resumable); returns the rows of the specs, as read back.
 
     Args:
         specs: the sweep's trials.
@@ -124,19 +162,27 @@ def run_trials(specs: list[TrialSpec], csv_path: pathlib.Path, workers: int | No
         executor: where trials run (`executors.make_executor`); its results are the same wherever
             they run.
     """
-    table = ResultsTable(csv_path, TRIAL_FIELDS, TRIAL_KEY)
-    todo = [s for s in specs if (s.object, s.method, s.grasp, s.seed) not in table]
+    prints = fingerprints(specs)
+    table = trial_table(csv_path)
+    todo = [(s, f) for s, f in zip(specs, prints) if spec_key(s, f) not in table]
     total = len(specs)
     done = total - len(todo)
     if done:
         print(f"{label}: resuming, {done}/{total} trials already in {csv_path}", file=progress)
     executor = executor or LocalExecutor(workers)
     start = time.perf_counter()
-    with contextlib.closing(executor.imap_unordered(run_one, [(spec,) for spec in todo])) as results:
-        for _, row in results:
+    with contextlib.closing(executor.imap_unordered(run_one, [(spec,) for spec, _ in todo])) as results:
+        for index, row in results:
+            row["fingerprint"] = todo[index][1]
             table.append([row])
             done += 1
             verdict = "ok" if row["success"] in (True, "1", 1) else row["failure"]
             print(f"{label}: {done}/{total} {row['object']} {row['method']}/{row['grasp']} seed {row['seed']}: "
                   f"{verdict} ({time.perf_counter() - start:.0f} s)", file=progress, flush=True)
-    return table
+    return select(table.rows(), specs, prints)
+
+
+def select(rows: list[dict], specs: list["TrialSpec"], prints: list[str]) -> list[dict]:
+    """The rows (as read back) of these specs with these fingerprints: what a report may use."""
+    wanted = {tuple(str(v) for v in spec_key(s, f)) for s, f in zip(specs, prints)}
+    return [r for r in rows if tuple(r[k] for k in TRIAL_KEY) in wanted]

@@ -28,7 +28,7 @@ from drake_grasp.primitives.depth import DepthParams, DepthPrimitive
 from drake_grasp.primitives.principal_axis import PrincipalAxisParams, PrincipalAxisPrimitive
 from drake_grasp.primitives.resemblance import ResemblanceParams, ShapeResemblancePrimitive
 from drake_grasp.primitives.scores import SHAPES, ScoreParams, ShapeEvidence
-from drake_grasp.primitives.sequencer import ExplorationSequencer, Phase, SequencerParams
+from drake_grasp.primitives.sequencer import ExplorationSequencer, ExplorationPhase, SequencerParams
 from drake_grasp.primitives.silhouette import CameraSample, Silhouette
 
 __all__ = [
@@ -37,7 +37,7 @@ __all__ = [
     "DepthParams",
     "DepthPrimitive",
     "ExplorationSequencer",
-    "Phase",
+    "ExplorationPhase",
     "PrimitiveCommand",
     "PrincipalAxisParams",
     "PrincipalAxisPrimitive",

@@ -76,6 +76,10 @@ class SilhouetteCamera(LeafSystem):
         self.DeclarePeriodicDiscreteUpdateEvent(period, 0.0, self._Sample)
         self.frames = 0  # images taken (a diagnostic; not state)
 
+    def image_input_port(self):
+        """The image input: ``label_image`` or ``color_image``, as the segmentation method needs."""
+        return self._image_port
+
     def mask(self, image: np.ndarray) -> np.ndarray:
         """The object's mask in an image array (label (H, W, 1) or RGBA (H, W, 4))."""
         s = self.segmentation

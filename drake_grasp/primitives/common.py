@@ -53,8 +53,8 @@ class VisualPrimitive(LeafSystem):
         if not period > 0:
             raise ValueError(f"a primitive's update period must be positive, got {period}")
         self.period = period
-        self.DeclareVectorInputPort("camera_sample", CameraSample.SIZE)
-        self.DeclareVectorInputPort("command", 1)
+        self._camera_sample_port = self.DeclareVectorInputPort("camera_sample", CameraSample.SIZE)
+        self._command_port = self.DeclareVectorInputPort("command", 1)
         self._twist_state = self.DeclareDiscreteState(TWIST_SIZE)
         self.DeclareStateOutputPort("V_C_desired", self._twist_state)
         self._bookkeeping = self.DeclareDiscreteState(np.array([-1.0, float(PrimitiveCommand.OFF), 0.0]))
@@ -64,8 +64,8 @@ class VisualPrimitive(LeafSystem):
         self.DeclarePeriodicDiscreteUpdateEvent(self.period, 0.0, self._Update)
 
     def _Update(self, context: Context, discrete_state) -> None:
-        sample = CameraSample.from_vector(self.get_input_port(0).Eval(context))
-        command = PrimitiveCommand.from_value(self.get_input_port(1).Eval(context)[0])
+        sample = CameraSample.from_vector(self._camera_sample_port.Eval(context))
+        command = PrimitiveCommand.from_value(self._command_port.Eval(context)[0])
         book = context.get_discrete_state(self._bookkeeping).get_value().copy()
         t = context.get_time()
         if command == PrimitiveCommand.EXPLORE and book[self._BOOK_LAST_COMMAND] != PrimitiveCommand.EXPLORE:

@@ -120,7 +120,7 @@ class DepthPrimitive(VisualPrimitive):
         super().__init__(period)
         self.intrinsics = intrinsics
         self.params = params or DepthParams()
-        self.DeclareVectorInputPort("axis", 3)
+        self._axis_port = self.DeclareVectorInputPort("axis", 3)
         self._centre = self.DeclareDiscreteState(np.full(3, np.nan))
         self._depth = self.DeclareDiscreteState(np.full(1, np.nan))
         self._extents = self.DeclareDiscreteState(np.full(3, np.nan))
@@ -138,7 +138,7 @@ class DepthPrimitive(VisualPrimitive):
         centre = context.get_discrete_state(self._centre).get_value().copy()
         if new_sample and sample.usable:
             internal = context.get_discrete_state(self._internal).get_value().copy()
-            centre, extents, fit_info = self._Estimate(internal, sample, self.get_input_port(2).Eval(context))
+            centre, extents, fit_info = self._Estimate(internal, sample, self._axis_port.Eval(context))
             SetDiscreteGroup(discrete_state, self._internal, internal)
             SetDiscreteGroup(discrete_state, self._centre, centre)
             SetDiscreteGroup(discrete_state, self._depth, [np.linalg.norm(centre - sample.p_WC)])

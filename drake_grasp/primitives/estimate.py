@@ -15,7 +15,7 @@ from pydrake.common.value import AbstractValue
 from pydrake.systems.framework import Context, LeafSystem
 
 from drake_grasp.primitives.scores import SHAPES
-from drake_grasp.primitives.sequencer import Phase, phase_value
+from drake_grasp.primitives.sequencer import ExplorationPhase, phase_value
 from drake_grasp.primitives.silhouette import CameraSample
 
 OBJECT_NOT_FOUND = "object not found"
@@ -113,11 +113,11 @@ def estimate_axes(axis: np.ndarray, elongated: bool) -> tuple[np.ndarray, np.nda
     return np.column_stack([a, b, c]), (a.copy() if elongated else None)
 
 
-def gather_estimate(phase: Phase, centre: np.ndarray, camera_position: np.ndarray, axis: np.ndarray,
+def gather_estimate(phase: ExplorationPhase, centre: np.ndarray, camera_position: np.ndarray, axis: np.ndarray,
                     axis_info: np.ndarray, extents: np.ndarray, resemblances: dict, evidence: np.ndarray
                     ) -> ObjectEstimate:
     """The ObjectEstimate from the primitives' outputs (see `ObjectEstimator`'s ports for each)."""
-    if phase == Phase.NOT_FOUND or not np.all(np.isfinite(centre)):
+    if phase == ExplorationPhase.NOT_FOUND or not np.all(np.isfinite(centre)):
         return ObjectEstimate(status=OBJECT_NOT_FOUND)
     elongated, mean_eccentricity = axis_info[0] > 0.5, axis_info[1]
     axes, principal_axis = estimate_axes(axis, elongated)
@@ -134,7 +134,7 @@ class ObjectEstimator(LeafSystem):
     """Gathers the primitives' outputs into one ObjectEstimate (no state: a function of its inputs).
 
     Input ports:
-        phase (1): the exploration sequencer's Phase (NOT_FOUND: no estimate).
+        phase (1): the exploration sequencer's ExplorationPhase (NOT_FOUND: no estimate).
         camera_sample (25): the latest camera sample (for the camera's position).
         centre (3), extents (3): from the depth primitive, m.
         axis (3), axis_info (3): from the principal axis primitive.

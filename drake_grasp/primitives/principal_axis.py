@@ -81,7 +81,7 @@ class PrincipalAxisPrimitive(VisualPrimitive):
         super().__init__(period)
         self.intrinsics = intrinsics
         self.params = params or PrincipalAxisParams()
-        self.DeclareVectorInputPort("centre", 3)
+        self._centre_port = self.DeclareVectorInputPort("centre", 3)
         self._axis = self.DeclareDiscreteState(np.full(3, np.nan))
         self._info = self.DeclareDiscreteState(np.array([0.0, np.nan, 0.0]))
         self._internal = self.DeclareDiscreteState(np.zeros(self._INTERNAL_SIZE))
@@ -129,6 +129,6 @@ class PrincipalAxisPrimitive(VisualPrimitive):
             # A line at angle θ in the image turns by −ψ when the camera rolls by ψ about +z.
             twist[2] = p.roll_gain * wrap_angle(s.axis_angle, math.pi)
         # The arc: about the camera's x axis (at the arc's start: the blob's axis), around the centre.
-        centre = self.get_input_port(2).Eval(context)
+        centre = self._centre_port.Eval(context)
         twist += self.ArcTwist(discrete_state, sample, centre, sample.R_WC[:, 0], explore_time, p)
         return twist

@@ -95,8 +95,8 @@ class ShapeResemblancePrimitive(VisualPrimitive):
         self.params = params or DEFAULT_ARCS[shape]
         self.params.validate()
         self.score_params = score_params or scores.ScoreParams()
-        self.DeclareVectorInputPort("centre", 3)
-        self.DeclareVectorInputPort("axis", 3)
+        self._centre_port = self.DeclareVectorInputPort("centre", 3)
+        self._axis_port = self.DeclareVectorInputPort("axis", 3)
         self._resemblance = self.DeclareDiscreteState(np.zeros(1))
         self._evidence = self.DeclareDiscreteState(np.zeros(9))
         self._frame = self.DeclareDiscreteState(np.full(9, np.nan))
@@ -112,12 +112,12 @@ class ShapeResemblancePrimitive(VisualPrimitive):
             return np.zeros(6)  # this primitive only acts while exploring
         frame = context.get_discrete_state(self._frame).get_value().copy()
         internal = context.get_discrete_state(self._internal).get_value().copy()
-        centre = self.get_input_port(2).Eval(context)
+        centre = self._centre_port.Eval(context)
         if explore_time < 0.5 * self.period:
             frame[:] = np.nan  # a new exploration: forget the previous one's frame
         if not np.all(np.isfinite(frame)):
             # Latch the frame (as soon as centre, axis and object are known); forget earlier statistics.
-            axis = self.get_input_port(3).Eval(context)
+            axis = self._axis_port.Eval(context)
             if not (np.all(np.isfinite(centre)) and np.all(np.isfinite(axis)) and sample.visible):
                 SetDiscreteGroup(discrete_state, self._frame, frame)
                 return np.zeros(6)

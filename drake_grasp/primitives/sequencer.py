@@ -25,7 +25,7 @@ from drake_grasp.primitives.common import PrimitiveCommand
 from drake_grasp.primitives.silhouette import CameraSample
 
 
-class Phase(enum.IntEnum):
+class ExplorationPhase(enum.IntEnum):
     APPROACH = 0
     DEPTH_AXIS = 1
     RESEMBLANCE = 2
@@ -34,22 +34,22 @@ class Phase(enum.IntEnum):
 
     @property
     def finished(self) -> bool:
-        return self in (Phase.DONE, Phase.NOT_FOUND)
+        return self in (ExplorationPhase.DONE, ExplorationPhase.NOT_FOUND)
 
 
 # Commands per phase: (depth, principal axis, resemblance).
 _COMMANDS = {
-    Phase.APPROACH: (PrimitiveCommand.APPROACH, PrimitiveCommand.TRACK, PrimitiveCommand.OFF),
-    Phase.DEPTH_AXIS: (PrimitiveCommand.EXPLORE, PrimitiveCommand.EXPLORE, PrimitiveCommand.OFF),
-    Phase.RESEMBLANCE: (PrimitiveCommand.TRACK, PrimitiveCommand.TRACK, PrimitiveCommand.EXPLORE),
-    Phase.DONE: (PrimitiveCommand.OFF,) * 3,
-    Phase.NOT_FOUND: (PrimitiveCommand.OFF,) * 3,
+    ExplorationPhase.APPROACH: (PrimitiveCommand.APPROACH, PrimitiveCommand.TRACK, PrimitiveCommand.OFF),
+    ExplorationPhase.DEPTH_AXIS: (PrimitiveCommand.EXPLORE, PrimitiveCommand.EXPLORE, PrimitiveCommand.OFF),
+    ExplorationPhase.RESEMBLANCE: (PrimitiveCommand.TRACK, PrimitiveCommand.TRACK, PrimitiveCommand.EXPLORE),
+    ExplorationPhase.DONE: (PrimitiveCommand.OFF,) * 3,
+    ExplorationPhase.NOT_FOUND: (PrimitiveCommand.OFF,) * 3,
 }
 
 
 @dataclasses.dataclass
 class SequencerParams:
-    """Phase durations, s (diagrams/perception.scenarios.yaml)."""
+    """ExplorationPhase durations, s (diagrams/perception.scenarios.yaml)."""
 
     approach_time: float = 1.5
     depth_axis_time: float = 4.0
@@ -70,10 +70,10 @@ class SequencerState:
     """Attributes: the phase, when it started (s), whether the object has been seen, and the
     start times of every phase entered so far (s)."""
 
-    phase: Phase = Phase.APPROACH
+    phase: ExplorationPhase = ExplorationPhase.APPROACH
     phase_start: float = 0.0
     object_seen: bool = False
-    phase_starts: tuple[tuple[int, float], ...] = ((int(Phase.APPROACH), 0.0),)
+    phase_starts: tuple[tuple[int, float], ...] = ((int(ExplorationPhase.APPROACH), 0.0),)
 
 
 class ExplorationSequencer(LeafSystem):
@@ -83,7 +83,7 @@ class ExplorationSequencer(LeafSystem):
         camera_sample (25): from SilhouetteCamera (to know whether the object has been seen).
     Output ports:
         depth_command, axis_command, resemblance_command (1 each): PrimitiveCommand values.
-        phase (1): the Phase value.
+        phase (1): the ExplorationPhase value.
         camera_active (1): 1 until the exploration is finished, then 0 (for the camera's `active`).
     """
 
@@ -91,7 +91,7 @@ class ExplorationSequencer(LeafSystem):
         super().__init__()
         self.params = params or SequencerParams()
         self.params.validate()
-        self.DeclareVectorInputPort("camera_sample", CameraSample.SIZE)
+        self._camera_sample_port = self.DeclareVectorInputPort("camera_sample", CameraSample.SIZE)
         self._state = self.DeclareAbstractState(AbstractValue.Make(SequencerState()))
         for index, name in enumerate(("depth_command", "axis_command", "resemblance_command")):
             self.DeclareVectorOutputPort(name, 1, lambda context, output, i=index: output.SetAtIndex(
@@ -108,16 +108,16 @@ class ExplorationSequencer(LeafSystem):
     def _Advance(self, context: Context, state) -> None:
         current = self.state(context)
         t = context.get_time()
-        seen = current.object_seen or CameraSample.from_vector(self.get_input_port(0).Eval(context)).visible
+        seen = current.object_seen or CameraSample.from_vector(self._camera_sample_port.Eval(context)).visible
         elapsed = t - current.phase_start
         p = self.params
         phase = current.phase
-        if phase == Phase.APPROACH and elapsed >= p.approach_time - 1e-9:
-            phase = Phase.DEPTH_AXIS if seen else Phase.NOT_FOUND
-        elif phase == Phase.DEPTH_AXIS and elapsed >= p.depth_axis_time - 1e-9:
-            phase = Phase.RESEMBLANCE
-        elif phase == Phase.RESEMBLANCE and elapsed >= p.resemblance_time - 1e-9:
-            phase = Phase.DONE
+        if phase == ExplorationPhase.APPROACH and elapsed >= p.approach_time - 1e-9:
+            phase = ExplorationPhase.DEPTH_AXIS if seen else ExplorationPhase.NOT_FOUND
+        elif phase == ExplorationPhase.DEPTH_AXIS and elapsed >= p.depth_axis_time - 1e-9:
+            phase = ExplorationPhase.RESEMBLANCE
+        elif phase == ExplorationPhase.RESEMBLANCE and elapsed >= p.resemblance_time - 1e-9:
+            phase = ExplorationPhase.DONE
         if phase != current.phase:
             new = SequencerState(phase, t, seen, current.phase_starts + ((int(phase), t),))
         else:
@@ -125,6 +125,6 @@ class ExplorationSequencer(LeafSystem):
         state.get_mutable_abstract_state(self._state).set_value(new)
 
 
-def phase_value(value: float) -> Phase:
-    """The Phase of a `phase` port value."""
-    return Phase(int(np.round(value)))
+def phase_value(value: float) -> ExplorationPhase:
+    """The ExplorationPhase of a `phase` port value."""
+    return ExplorationPhase(int(np.round(value)))
