@@ -55,3 +55,14 @@ def test_csv_and_figure_are_written(tmp_path):
     assert len(lines) == 4 and lines[1].startswith("o/blob_000.obj,blob,spherical,2,2,")
     paths = novel.plot(rows, tmp_path)
     assert all(p.stat().st_size > 1000 for p in paths)
+
+
+def test_objects_are_generated_once_and_reused(tmp_path):
+    first = novel.ensure_objects(tmp_path / "objects", 3, 7)
+    assert [e["class"] for e in first] == ["blob", "union", "plate"]
+    stamps = {e["file"]: __import__("os").stat(e["file"]).st_mtime_ns for e in first}
+    again = novel.ensure_objects(tmp_path / "objects", 3, 7)
+    assert again == first and all(__import__("os").stat(f).st_mtime_ns == t for f, t in stamps.items())
+    assert not list((tmp_path / "objects").glob(".generating.*"))  # no staging folder left behind
+    other = novel.ensure_objects(tmp_path / "objects", 2, 8)  # another seed: its own files
+    assert {e["file"] for e in other}.isdisjoint(stamps)

@@ -208,11 +208,35 @@ def plot(rows: list[NovelRow], out_dir: pathlib.Path) -> list[pathlib.Path]:
 
 
 def ensure_objects(directory: pathlib.Path, count: int, seed: int) -> list[dict]:
-    """The manifest entries ({"file", "class", ...}) of `count` novel objects of generator seed `seed`
-    in `directory`: generated there once, reused on a rerun (the generator is deterministic)."""
-    from drake_grasp.geometry.novel import generate_objects  # TODO(merge): the generator's API
+    """The novel objects of generator seed `seed`, indices 0..count-1, in `directory`: generated once,
+    reused on a rerun. Returns manifest entries {"file": path, "class": name, ...}.
 
-    return generate_objects(count=count, seed=seed, out_dir=directory)
+    The generator is deterministic (object i of seed s is the same bytes whatever `count` is), so a
+    manifest of the same seed and count is reused as it is. Files are generated in a private folder
+    and moved into place one by one, the manifest last: an interrupted generation leaves no torn file
+    and no manifest that promises a missing one.
+    """
+    import shutil
+    import tempfile
+
+    from drake_grasp.experiments.results import write_atomically
+    from drake_grasp.geometry.novel import generate
+
+    directory.mkdir(parents=True, exist_ok=True)
+    manifest = directory / "manifest.json"
+    rows = json.loads(manifest.read_text()) if manifest.is_file() else None
+    fresh = (rows is not None and len(rows) == count and all(r["seed"] == seed for r in rows)
+             and all((directory / r["file"]).is_file() for r in rows))
+    if not fresh:
+        staging = pathlib.Path(tempfile.mkdtemp(dir=directory, prefix=".generating."))
+        try:
+            rows = generate(count, seed, staging)
+            for name in [r["file"] for r in rows] + ["manifest.csv"]:
+                (staging / name).replace(directory / name)
+            write_atomically(manifest, (staging / "manifest.json").read_text())
+        finally:
+            shutil.rmtree(staging, ignore_errors=True)
+    return [{**row, "file": str(directory / row["file"])} for row in rows]
 
 
 def run_study(config: NovelConfig, out_dir: pathlib.Path, objects: list[dict], executor, scenario_file: str = "",
