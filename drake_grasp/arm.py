@@ -1,6 +1,6 @@
 """Facts about the 7-DoF Barrett WAM.
 
-Sources (DESIGN.md §4): WAM Arm User's Manual, D-H table 5 and joint-limit table 6; libbarrett's
+Sources (docs/design.md §4.2): WAM Arm User's Manual, D-H table 5 and joint-limit table 6; libbarrett's
 config wam7w.conf for masses. The WAM table uses the classical D-H convention: the transform from
 frame i-1 to frame i is RotZ(theta_i) TransZ(d_i) TransX(a_i) RotX(alpha_i), theta_i = q_i.
 At q = 0 the arm stands straight up.
@@ -40,5 +40,5 @@ BASE_MASS = 9.97  # the base casing; it is welded to the world, so it never matt
 
 HOME = np.array([0.0, -2.0, 0.0, 3.13, 0.0, 0.0, 0.0])
 
-# The hand mounts on the J7 flange rotated by pi about the flange's z axis (DESIGN.md §4).
+# The hand mounts on the J7 flange rotated by pi about the flange's z axis (docs/design.md §4.2).
 HAND_MOUNT_YAW = math.pi

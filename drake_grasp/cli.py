@@ -45,6 +45,7 @@ def _parser() -> argparse.ArgumentParser:
         "the fingers (torque close with breakaway), lifts 10 cm and holds 10 s; prints whether the "
         "object was held and how much it slipped in the hand.",
     )
+    _mesh_options(demo)
     demo.add_argument("--object", required=True, metavar="NAME|PATH",
                       help="a catalogue object (e.g. soccer_ball, bottle_case), a primitive "
                       "(sphere:0.12, cube:0.08, cylinder:0.1x0.3) or a mesh file (OBJ, STL, PLY)")
@@ -74,6 +75,7 @@ def _parser() -> argparse.ArgumentParser:
         "the hand's torque close, lifts 10 cm, holds 10 s and judges success (object off the table, "
         "moved < 1 cm and 10 deg in the hand during the hold).",
     )
+    _mesh_options(trial)
     trial.add_argument("--object", required=True, metavar="NAME|PATH",
                        help="a catalogue object, a primitive (sphere:0.12, cube:0.08, cylinder:0.1x0.3) or a mesh file")
     trial.add_argument("--method", choices=["compliant", "eigengrasp"], default="compliant",
@@ -181,6 +183,7 @@ def _parser() -> argparse.ArgumentParser:
         "autograsp (breakaway) and ranked by eps. Prints the three best grasps (hand pose in the "
         "object frame, finger posture, energy, eps) and the planning time.",
     )
+    _mesh_options(eigengrasp)
     eigengrasp.add_argument("--object", required=True, metavar="NAME|PATH",
                             help="a catalogue object, a primitive (sphere:0.12, cube:0.08, cylinder:0.1x0.3) or a mesh file")
     eigengrasp.add_argument("--steps", default="70000", metavar="N",
@@ -199,15 +202,49 @@ def _parser() -> argparse.ArgumentParser:
         description="Starts the camera above the table looking down at the object's nominal place, runs "
         "the visual primitives (depth and principal axis, then sphere/cylinder/box resemblance) and "
         "prints the estimated centre, depth, principal axis and size beside the ground truth, and the "
-        "three resemblances. The object is placed with trial SEED's variation (DESIGN.md 8).",
+        "three resemblances. The object is placed with trial SEED's variation (docs/design.md §4.7).",
     )
+    _mesh_options(resemble)
     resemble.add_argument("--object", required=True, metavar="NAME|PATH",
                           help="a catalogue object, a primitive (sphere:0.12, cube:0.08, cylinder:0.1x0.3) or a mesh file")
     resemble.add_argument("--nominal", action="store_true", help="place the object without the seed's variation")
     _common(resemble)
     resemble.add_argument("--replay", metavar="FILE.html", help="write a Meshcat replay of the exploration")
     resemble.set_defaults(run=_run_resemble)
+
+    objects_cmd = sub.add_parser("objects", help="object utilities: generate novel test objects")
+    objects_sub = objects_cmd.add_subparsers(dest="objects_command", metavar="ACTION", required=True)
+    generate = objects_sub.add_parser(
+        "generate",
+        help="write N novel watertight meshes (metres) and a manifest",
+        description="Writes N watertight OBJ meshes in metres (classes in turn: non-convex blobs, unions "
+        "of boxes/cylinders/ellipsoids, thin plates, L and T shapes, rings, handles; largest extent "
+        "3-25 cm) and manifest.json / manifest.csv. The same --seed gives byte-identical files.",
+    )
+    generate.add_argument("--count", type=int, required=True, metavar="N", help="how many objects")
+    generate.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
+    generate.add_argument("--out", required=True, metavar="DIR", help="directory for the meshes and manifest")
+    generate.add_argument("--json", action="store_true", help="print the manifest as one JSON object")
+    generate.set_defaults(run=_run_objects_generate)
     return parser
+
+
+def _run_objects_generate(args) -> int:
+    from drake_grasp.geometry import novel
+
+    _check_seed(args.seed)
+    if args.count < 1:
+        raise UsageError(f"--count must be >= 1, got {args.count}")
+    out = pathlib.Path(args.out)
+    if out.exists() and not out.is_dir():
+        raise UsageError(f"--out {args.out}: not a directory")
+    rows = novel.generate(args.count, args.seed, out)
+    if args.json:
+        print(json.dumps({"out": str(out), "objects": rows}))
+    else:
+        classes = sorted({r["class"] for r in rows})
+        print(f"objects generate: {len(rows)} meshes ({', '.join(classes)}) in {out}; {out / 'manifest.json'}")
+    return 0
 
 
 def _run_resemble(args) -> int:
@@ -225,6 +262,21 @@ def _run_resemble(args) -> int:
     record = dict(comparison_record(result, spec), seed=args.seed, nominal=args.nominal)
     _emit(args, record, f"resemble_{spec.name}_{args.seed}.json", "\n".join(format_comparison(record)), replay)
     return 0 if result.estimate.found else 1
+
+
+def _mesh_options(p: argparse.ArgumentParser) -> None:
+    """--scale and --largest-component, for every command that takes --object."""
+    p.add_argument("--scale", type=float, default=1.0, metavar="S",
+                   help="multiply a mesh file's coordinates by S (e.g. 0.001 for a file in millimetres)")
+    p.add_argument("--largest-component", action="store_true",
+                   help="a mesh of separate, non-touching solids: keep the largest (else an error)")
+
+
+def _resolve(args):
+    """The --object of a single-run command, with its mesh options."""
+    from drake_grasp.objects import resolve_user_object
+
+    return resolve_user_object(args.object, scale=args.scale, largest_component=args.largest_component)
 
 
 def _common(p: argparse.ArgumentParser, scenario: bool = True, seed: bool = True) -> None:
@@ -313,13 +365,11 @@ def _check_seed(seed: int, trials: int = 1) -> None:
 def _single_run_inputs(args) -> tuple:
     """(replay path or None, scenario, object) of a single-run command (demo, trial, resemble): the
     seed, the replay file name, the scenario and the object checked, each a one-line error."""
-    from drake_grasp.objects import resolve_object
-
     _check_seed(args.seed)
     if args.out:
         _check_out_dir(args.out)
     replay = _writable_file(args.replay, ".html") if args.replay else None
-    return replay, _load_scenario(args), resolve_object(args.object)
+    return replay, _load_scenario(args), _resolve(args)
 
 
 def _writable_file(path: str, suffix: str) -> pathlib.Path:
@@ -447,13 +497,12 @@ def _run_eigengrasp_trial(args, replay: pathlib.Path | None) -> int:
 
 def _run_plan_eigengrasp(args) -> int:
     from baselines.eigengrasp.planner import EigengraspPlanner
-    from drake_grasp.objects import resolve_object
 
     _check_seed(args.seed)
     steps = _check_planner_args(args.steps, args.energy)
     if args.out:
         _check_out_dir(args.out)
-    spec = resolve_object(args.object)
+    spec = _resolve(args)
     plan = EigengraspPlanner(spec, args.energy, table=args.table).plan(steps, seed=args.seed)
     record = plan.to_dict()
     if args.json:
@@ -652,12 +701,13 @@ def main(argv: list[str] | None = None) -> int:
     """Entry point of the `drake-grasp` console script; returns the exit code."""
     import warnings
 
-    from drake_grasp.objects import UnstablePoseWarning
+    from drake_grasp.objects import MeshNote, UnstablePoseWarning
 
     args = _parser().parse_args(argv)
 
     def one_line(message, category, *rest, **kwargs):
-        print(f"drake-grasp {args.command}: warning: {message}", file=sys.stderr)
+        kind = "note" if issubclass(category, MeshNote) else "warning"
+        print(f"drake-grasp {args.command}: {kind}: {message}", file=sys.stderr, flush=True)
 
     try:
         with warnings.catch_warnings(), _sigterm_as_interrupt():

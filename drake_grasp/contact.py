@@ -30,12 +30,12 @@ class ContactParameters:
 
     Attributes:
         friction: Coulomb friction coefficient μ, used for both static and dynamic friction
-            (dimensionless). DESIGN §5: hand–object and table–object μ = 0.5 (assumed). Drake
+            (dimensionless). Hand–object and table–object μ = 0.5 (assumed; docs/design.md §4.4). Drake
             combines the coefficients of two geometries as 2·μ1·μ2/(μ1 + μ2), so equal values
             on both sides give that value.
         hydroelastic_modulus: Hydroelastic modulus of the compliant objects (Pa). 1e6 Pa is soft
-            enough for contact patches of a few mm on our light objects and was measured (DESIGN
-            §10) to hold grasps at 5–10 ms time steps.
+            enough for contact patches of a few mm on our light objects and was measured (docs/design.md
+            §5.1) to hold grasps at 5–10 ms time steps.
         hunt_crossley_dissipation: Hunt–Crossley dissipation (s/m) of every geometry; damps the
             normal motion of the compliant contact so that objects come to rest. Measured
             (tests/test_objects.py, "lagged" approximation, 10 ms step, objects dropped a few mm

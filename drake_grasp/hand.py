@@ -1,6 +1,6 @@
 """Facts about the BarrettHand BH8-280, and its compliance modes.
 
-Every number here is a fact about the hardware, with its source (DESIGN.md §3 collects them):
+Every number here is a fact about the hardware, with its source (docs/design.md §4.1 collects them):
 
 * Barrett BH8 manual, D-H table of the fingers, and the Barrett support wiki;
 * libbarrett (include/barrett/products/hand.h, src/products/hand.cpp) for the transmission ratios;
@@ -23,7 +23,7 @@ import enum
 import functools
 import math
 
-# --- Kinematics (BH8 manual D-H table; DESIGN.md §3). Lengths in metres. -------------------------
+# --- Kinematics (BH8 manual D-H table; docs/design.md §4.1). Lengths in metres. -------------------
 AW = 0.025  # Aw: offset of the F1/F2 spread axes from the palm centre, along x.
 A1 = 0.050  # A1: spread axis to proximal axis (knuckle length).
 A2 = 0.070  # A2: proximal axis to distal axis (proximal link length).
@@ -38,12 +38,12 @@ FINGERS = (1, 2, 3)
 FINGER_R = {1: -1, 2: 1, 3: 0}
 FINGER_J = {1: 1, 2: 1, 3: -1}
 
-# --- Joint ranges (BH8 manual; DESIGN.md §3), rad. ----------------------------------------------
+# --- Joint ranges (BH8 manual; docs/design.md §4.1), rad. -----------------------------------------
 SPREAD_LIMITS = (0.0, math.pi)  # 0-180 deg, F1 and F2 each.
 PROXIMAL_LIMITS = (0.0, math.radians(140.0))  # 2.44 rad.
 DISTAL_LIMITS = (0.0, math.radians(48.0))  # 0.84 rad, relative to the proximal link.
 
-# --- Transmission (libbarrett hand.cpp; DESIGN.md §3). -------------------------------------------
+# --- Transmission (libbarrett hand.cpp; docs/design.md §4.1). -------------------------------------
 MOTOR_TO_PROXIMAL = 125.0  # motor turns per proximal-joint turn.
 MOTOR_TO_DISTAL = 375.0  # motor turns per distal-joint turn, clutch engaged.
 # After breakaway libbarrett computes outer = motor / 93.75 - inner_frozen: 375 / 93.75 = 4 times
@@ -55,14 +55,14 @@ BREAKAWAY_SPEEDUP = MOTOR_TO_DISTAL / MOTOR_TO_DISTAL_AFTER_BREAKAWAY  # = 4.
 # Breakaway torque at the proximal joint (GraspIt! BarrettBH8_280 model), N*m.
 BREAKAWAY_TORQUE = 0.5
 
-# --- Masses (DESIGN.md §3), kg. ------------------------------------------------------------------
+# --- Masses (docs/design.md §4.1), kg. ------------------------------------------------------------
 BASE_MASS = 0.664  # hand base, BH8-280, measured by Barrett.
 KNUCKLE_MASS = 0.141  # jhu-lcsr/barrett_model.
 PROXIMAL_MASS = 0.062
 DISTAL_MASS = 0.041
 FINGER_LOAD_LIMIT = 2.0  # kg per finger (manual).
 
-# --- Geometry of the shell (DESIGN.md §3: primitives are fine). ----------------------------------
+# --- Geometry of the shell (docs/design.md §4.1: primitives are fine). ----------------------------
 BASE_RADIUS = 0.0445  # hand base is a cylinder of about 89 mm diameter.
 PALM_HEIGHT = 0.080  # palm surface above the hand base frame.
 FINGER_WIDTH = 0.025  # width of a finger link, across the closing plane (assumed).
@@ -73,7 +73,7 @@ PROXIMAL_BEHIND_AXIS = 0.005  # the proximal box starts this far behind the join
 # The distal pad surface holds the fingertip frame, D3 from the D-H line: thickness 2*D3.
 DISTAL_THICKNESS = 2.0 * D3
 
-# --- Finger force (DESIGN.md §3, assumed from the manual's force plot). --------------------------
+# --- Finger force (docs/design.md §4.1, assumed from the manual's force plot). --------------------
 FINGERTIP_STALL_FORCE = 15.0  # N, lower end of the 15-25 N range.
 
 

@@ -27,7 +27,7 @@ WAM_SDF = MODELS_DIR / "wam" / "wam7.sdf"
 
 # Rigid-hydroelastic fingers and palm: the objects carry the compliance of the contact (their
 # modulus is set per scenario), which is also the cheaper pairing for Drake's hydroelastic contact.
-# mu = 0.5 as DESIGN.md §5 assumes for hand-object.
+# mu = 0.5 as assumed for hand-object (docs/design.md §4.4).
 HAND_HUNT_CROSSLEY_DISSIPATION = 1.0  # s/m
 HAND_FRICTION = 0.5
 HAND_RESOLUTION_HINT = 0.01  # m; only used by the palm cylinder.

@@ -56,7 +56,9 @@ from pydrake.multibody.parsing import Parser
 from pydrake.multibody.tree import CalcSpatialInertia
 from scipy.spatial import ConvexHull, QhullError
 
+from drake_grasp import piece_budget
 from drake_grasp.contact import ContactParameters, compliant_proximity_sdf
+from drake_grasp.geometry import cleaning
 
 # --- Assumed numbers (DESIGN §5: "assumed" numbers live here, named) --------------------------
 
@@ -79,6 +81,13 @@ ELONGATION_RATIO = 1.1
 # A mesh is treated as convex when its volume is within this fraction of its hull's volume.
 CONVEXITY_TOLERANCE = 0.01
 
+MAX_FACES = 20_000  # a user mesh with more faces is simplified (quadric decimation) for contact
+# A user object larger or smaller than these (m) is probably not in metres (the hand spans ~0.3 m).
+PLAUSIBLE_EXTENTS = (0.01, 1.0)
+# A resting pose whose centre of mass lies at most this fraction of the object's largest extent
+# above its lowest possible resting height is stable enough not to warn: a tessellated sphere
+# stands on a vertex, and rolls off it lowering its centre by a fraction of a millimetre.
+STABLE_POSE_TOLERANCE = 0.02
 # Upper bound on the convex pieces of a decomposed user mesh (CoACD's max_convex_hull).
 DEFAULT_MAX_PIECES = 16
 
@@ -94,6 +103,14 @@ class ObjectError(ValueError):
     """A bad object name, primitive string or model file; the message is one line."""
 
 
+class UnitsWarning(UserWarning):
+    """A user object's size suggests its file is not in metres."""
+
+
+class MeshNote(UserWarning):
+    """A one-line note on what was done to a user's mesh (simplified, decomposed: slow steps)."""
+
+
 class UnstablePoseWarning(UserWarning):
     """A mesh given with its z up would tip over on the table, so it is rested on a stable face."""
 
@@ -104,6 +121,8 @@ def pose_warnings_announced():
     the same objects again after the command has checked them and said so once."""
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", UnstablePoseWarning)
+        warnings.simplefilter("ignore", UnitsWarning)
+        warnings.simplefilter("ignore", MeshNote)
         yield
 
 
@@ -275,9 +294,12 @@ def _write_atomically(path: Path, text: str) -> None:
 
 
 def _cached_hull_obj(label: str, points: np.ndarray) -> str:
-    """Writes the convex hull of `points` (m) as an OBJ in the cache; returns its absolute path."""
-    hull = trimesh.convex.convex_hull(np.asarray(points, dtype=float))
-    text = _obj_text(hull.vertices, hull.faces)
+    """Writes the convex hull of `points` (m), cleaned for contact (`geometry.cleaning`: no near
+    vertices, no sliver triangles), as an OBJ in the cache; returns its absolute path."""
+    piece = cleaning.clean_convex_points(np.asarray(points, dtype=float))
+    if piece is None or (piece.original_volume - piece.volume) > cleaning.VOLUME_TOLERANCE * piece.original_volume:
+        raise ObjectError(f"{label}: the convex hull is too thin or too small to be a solid for contact")
+    text = _obj_text(piece.vertices, piece.faces)
     digest = hashlib.sha256(text.encode()).hexdigest()[:16]
     directory = cache_dir() / "generated"
     directory.mkdir(exist_ok=True)
@@ -895,8 +917,19 @@ def _load_checked_mesh(path: Path, label: str, scale: float) -> trimesh.Trimesh:
     return mesh
 
 
-def _decompose(mesh: trimesh.Trimesh, key: str, max_pieces: int) -> list[str]:
-    """Convex pieces of `mesh` as OBJ files (vertices in the mesh frame), cached under `key`."""
+CLEANING_VERSION = 1  # part of the cache key of decompositions: bump when cleaning changes
+
+
+def _decompose(mesh: trimesh.Trimesh, key: str, max_pieces: int, label: str = "mesh") -> list[str]:
+    """Convex pieces of `mesh` as OBJ files (vertices in the mesh frame), cached under `key`.
+
+    Each piece first keeps at most `piece_budget.MAX_PIECE_VERTICES` of its vertices (a hull inside
+    it, so that contact and the planner's distances stay cheap), then is cleaned for contact
+    (:func:`drake_grasp.geometry.cleaning.clean_pieces`: no near-duplicate vertices, no sliver
+    triangles, none thinner than MIN_THICKNESS), removing at most VOLUME_TOLERANCE of the mesh's
+    volume (else ObjectError). Mass properties never come from the pieces: they come from the mesh.
+    """
+    key = f"{key}-{piece_budget.CACHE_TAG}-c{CLEANING_VERSION}"
     directory = cache_dir() / "decomposed" / key
     manifest = directory / "pieces.json"
     if manifest.exists():
@@ -908,6 +941,9 @@ def _decompose(mesh: trimesh.Trimesh, key: str, max_pieces: int) -> list[str]:
     else:
         import coacd  # Imported here: only non-convex user meshes need it.
 
+        warnings.warn(f"{label}: non-convex: decomposing into at most {max_pieces} convex pieces (CoACD, "
+                      "seconds to minutes; cached for next time)", MeshNote, stacklevel=3)
+
         coacd.set_log_level("error")
         result = coacd.run_coacd(
             coacd.Mesh(np.asarray(mesh.vertices, float), np.asarray(mesh.faces, np.int32)),
@@ -915,10 +951,13 @@ def _decompose(mesh: trimesh.Trimesh, key: str, max_pieces: int) -> list[str]:
             max_convex_hull=max_pieces,
             seed=0,
         )
-        parts = []
-        for vertices, _ in result:
-            piece = trimesh.convex.convex_hull(np.asarray(vertices, float))
-            parts.append((piece.vertices, piece.faces))
+        parts = [(np.asarray(vertices, float), None) for vertices, _ in result]
+    budgeted = [piece_budget.budgeted_piece(vertices)[0] for vertices, _ in parts]
+    try:
+        clean, _ = cleaning.clean_pieces(budgeted, float(mesh.volume))
+    except cleaning.CleaningError as error:
+        raise ObjectError(f"{label}: {error}") from None
+    parts = [(piece.vertices, piece.faces) for piece in clean]
     # Write into a private directory, then rename it into place: a concurrent process (parallel
     # trials) either sees the complete directory or none, and the first to finish wins.
     directory.parent.mkdir(parents=True, exist_ok=True)
@@ -958,7 +997,13 @@ def _lowest_resting_rotation(hull: trimesh.Trimesh, p_Ocm: np.ndarray) -> Rotati
 
 def _rests_stably_upright(hull: trimesh.Trimesh, p_Ocm: np.ndarray) -> bool:
     """Whether the object rests stably with its frame's z up: on a downward hull face (not an edge
-    or a point) over which its centre of mass lies."""
+    or a point) over which its centre of mass lies, or so that no resting pose lowers its centre of
+    mass by more than STABLE_POSE_TOLERANCE of its size (a sphere, rolling off the vertex its
+    tessellation stands on)."""
+    height = float(p_Ocm[2] - hull.vertices[:, 2].min())
+    distances = np.einsum("ij,ij->i", hull.face_normals, hull.triangles[:, 0] - p_Ocm)
+    if height - float(distances.min()) <= STABLE_POSE_TOLERANCE * float(np.max(hull.extents)):
+        return True
     down = np.array([0.0, 0.0, -1.0])
     z_min = float(hull.vertices[:, 2].min())
     bottom = (hull.face_normals @ down > 1.0 - 1e-6) & (np.abs(hull.triangles[:, :, 2] - z_min).max(axis=1) < 1e-6)
@@ -974,6 +1019,55 @@ def _rests_stably_upright(hull: trimesh.Trimesh, p_Ocm: np.ndarray) -> bool:
     return bool(np.all(equations[:, :2] @ p_Ocm[:2] + equations[:, 2] <= 1e-9))
 
 
+def _user_solid(mesh: trimesh.Trimesh, label: str, keep_largest: bool) -> trimesh.Trimesh:
+    """The solid a checked mesh encloses: its shells united; one component (or the largest)."""
+    from drake_grasp.geometry.solid import enclosed_solid, largest_component
+
+    solid = enclosed_solid(mesh)
+    if solid.components > 1:
+        if not keep_largest:
+            raise ObjectError(f"{label}: {solid.components} separate solids that do not touch (one object must be "
+                              "one piece); keep the largest with --largest-component")
+        return largest_component(solid)
+    return solid.mesh
+
+
+def _likely_scale(extent: float) -> tuple[str, float] | None:
+    """(unit, scale) that brings a largest extent `extent` (file units) into PLAUSIBLE_EXTENTS."""
+    for unit, factor in (("millimetres", 0.001), ("centimetres", 0.01), ("inches", 0.0254)):
+        if PLAUSIBLE_EXTENTS[0] <= extent * factor <= PLAUSIBLE_EXTENTS[1]:
+            return unit, factor
+    return None
+
+
+def _warn_units(mesh: trimesh.Trimesh, label: str, scale: float) -> None:
+    """One UnitsWarning when the object's largest extent (m) is implausible for the hand."""
+    extent = float(np.max(mesh.extents))
+    if PLAUSIBLE_EXTENTS[0] <= extent <= PLAUSIBLE_EXTENTS[1]:
+        return
+    if extent > PLAUSIBLE_EXTENTS[1]:
+        guess = _likely_scale(extent / scale)
+        hint = (f"is the file in {guess[0]}? use --scale {guess[1]:g}" if guess
+                else "is the file in metres? set --scale")
+        message = f"{label}: largest extent {extent:.3g} m: {hint}"
+    else:
+        message = (f"{label}: largest extent {extent * 1000:.3g} mm, smaller than the hand can grasp: "
+                   "is the file in metres? set --scale")
+    warnings.warn(message, UnitsWarning, stacklevel=3)
+
+
+def _simplified(mesh: trimesh.Trimesh, label: str) -> trimesh.Trimesh:
+    """The mesh, or, above MAX_FACES faces, its quadric-decimation simplification (trimesh over the
+    fast-simplification library) to MAX_FACES faces, when that stays a closed solid."""
+    if len(mesh.faces) <= MAX_FACES:
+        return mesh
+    simple = mesh.simplify_quadric_decimation(face_count=MAX_FACES)
+    simple.merge_vertices()
+    if not (simple.is_watertight and simple.volume > 0.9 * mesh.volume):
+        return mesh  # Decimation broke the surface: keep the full mesh (slower, still correct).
+    return simple
+
+
 def object_from_mesh(
     path: str | os.PathLike,
     mass: float | None = None,
@@ -986,8 +1080,17 @@ def object_from_mesh(
     closest_primitive: str | None = None,
     rgba=YELLOW_PAPER_RGBA,
     friction: float | None = None,
+    largest_component: bool = False,
 ) -> ObjectSpec:
     """An object from a closed triangle mesh in any format trimesh reads (OBJ, STL, PLY, ...).
+
+    The object is the solid the mesh encloses (:mod:`drake_grasp.geometry.solid`): closed shells
+    that overlap are united (mass and inertia never count an overlap twice); shells that do not
+    touch are an ObjectError naming their count, unless `largest_component` keeps the largest. A
+    largest extent outside PLAUSIBLE_EXTENTS gets a one-line UnitsWarning naming the likely unit. A
+    mesh of more than MAX_FACES faces is simplified for contact and rendering (quadric decimation,
+    trimesh with fast-simplification), saying so with a MeshNote; mass properties come from the
+    full mesh.
 
     Checks: the file exists and loads; vertices are finite; the mesh is not flat, is watertight,
     has consistent winding and non-zero volume. A mesh whose winding is consistently inverted
@@ -1013,6 +1116,7 @@ def object_from_mesh(
             'box'); default None.
         rgba: Visual colour.
         friction: Coulomb friction of this object; None uses the scene's.
+        largest_component: Keep the largest of several separate components instead of failing.
 
     Raises:
         ObjectError: One line naming the file and the problem.
@@ -1027,21 +1131,27 @@ def object_from_mesh(
     if not (scale > 0.0 and math.isfinite(scale)):
         raise ObjectError(f"{label}: scale must be positive, got {scale!r}")
     mesh = _load_checked_mesh(path, label, scale)
+    if len(mesh.faces) > MAX_FACES:  # Said first: what follows takes a while on such a mesh.
+        warnings.warn(f"{label}: {len(mesh.faces):,} faces; simplifying to {MAX_FACES:,} for contact and rendering",
+                      MeshNote, stacklevel=2)
+    mesh = _user_solid(mesh, label, largest_component)
+    _warn_units(mesh, label, scale)
     digest = hashlib.sha256(path.read_bytes()).hexdigest()
-    settings = f"{scale!r}|{max_pieces}|{COACD_THRESHOLD!r}|{CONVEXITY_TOLERANCE!r}"
+    settings = f"{scale!r}|{max_pieces}|{COACD_THRESHOLD!r}|{CONVEXITY_TOLERANCE!r}|{largest_component}|{MAX_FACES}"
     key = hashlib.sha256((digest + settings).encode()).hexdigest()[:20]
-    piece_paths = _decompose(mesh, f"{_model_name(path.stem)}-{key}", max_pieces)
     volume = float(mesh.volume)
     centroid = np.asarray(mesh.center_mass, float)
     unit_inertia = np.asarray(mesh.moment_inertia, float) / float(mesh.mass)
+    contact_mesh = _simplified(mesh, label)
+    piece_paths = _decompose(contact_mesh, f"{_model_name(path.stem)}-{key}", max_pieces, label)
     rpy_TO = (0.0, 0.0, 0.0)
-    if stable_pose is None and not _rests_stably_upright(mesh.convex_hull, centroid):
+    if stable_pose is None and not _rests_stably_upright(contact_mesh.convex_hull, centroid):
         warnings.warn(f"{label}: with its z up the object would tip over (it rests on an edge or a point, "
                       "or its centre of mass is not over its base); resting it on its most stable face",
                       UnstablePoseWarning, stacklevel=2)
         stable_pose = True
     if stable_pose:
-        rpy_TO = tuple(RollPitchYaw(_lowest_resting_rotation(mesh.convex_hull, centroid)).vector())
+        rpy_TO = tuple(RollPitchYaw(_lowest_resting_rotation(contact_mesh.convex_hull, centroid)).vector())
     pieces = [ShapePiece("convex", (), mesh_path=p) for p in piece_paths]
     return _make_spec(
         name or _model_name(path.stem),
@@ -1083,7 +1193,7 @@ def _piece_from_drake_shape(
             raise ObjectError(f"{label}: non-uniform mesh scale is not supported")
         mesh = _load_checked_mesh(Path(shape.source().path()), label, float(scale[0]))
         key = hashlib.sha256(Path(shape.source().path()).read_bytes()).hexdigest()[:20]
-        paths = _decompose(mesh, f"sdf_mesh-{key}-{float(scale[0])!r}-{max_pieces}", max_pieces)
+        paths = _decompose(mesh, f"sdf_mesh-{key}-{float(scale[0])!r}-{max_pieces}", max_pieces, label)
         return [ShapePiece("convex", (), p, rpy, path) for path in paths]
     raise ObjectError(f"{label}: collision shape {type(shape).__name__} is not supported")
 
@@ -1229,6 +1339,22 @@ def resolve_object(name_or_path: str | os.PathLike, **kw) -> ObjectSpec:
         f"unknown object {text!r}; valid names: {', '.join(PAPER_OBJECTS)}; or {_PRIMITIVE_HELP}; "
         "or a mesh/SDF file path"
     )
+
+
+def resolve_user_object(
+    name_or_path: str, *, scale: float = 1.0, largest_component: bool = False, **kw
+) -> ObjectSpec:
+    """:func:`resolve_object` with the options that only a mesh file takes (a command line's
+    ``--scale`` and ``--largest-component``): ObjectError if they are given for anything else."""
+    text = str(name_or_path).strip()
+    if scale == 1.0 and not largest_component:
+        return resolve_object(text, **kw)
+    options = "--scale" if scale != 1.0 else "--largest-component"
+    if text in _PAPER_FACTORIES or ":" in text or Path(text).suffix.lower() in (".sdf", ".urdf"):
+        raise ObjectError(f"{text}: {options} applies to mesh files only (OBJ, STL, PLY)")
+    if not (scale > 0.0 and math.isfinite(scale)):
+        raise ObjectError(f"--scale must be positive, got {scale!r}")
+    return resolve_object(text, scale=scale, largest_component=largest_component, **kw)
 
 
 def _object_from_file(path: Path, label: str, kw: dict) -> ObjectSpec:

@@ -18,8 +18,8 @@ point, simulates the exploration, and returns an `ExplorationResult`: the `Objec
 object's true poses for evaluation (`run_exploration` returns the estimate only). `ground_truth` and
 `compare` measure an estimate against the object's true pose and geometry.
 
-Choices (rates, gains, arcs, phase durations, score tolerances) live in
-diagrams/perception.scenarios.yaml (`PerceptionConfig`).
+Choices (rates, gains, arcs, phase durations, score tolerances) are part of the scenario: its
+`perception:` (`perception_config.PerceptionConfig`, numbers in diagrams/station.scenarios.yaml).
 """
 
 
@@ -35,70 +35,30 @@ from pydrake.systems.framework import DiagramBuilder, EventStatus
 from pydrake.systems.primitives import Adder, ConstantVectorSource
 
 from drake_grasp.control.arm_motion import ArmKinematics
-from drake_grasp.control.camera_motion import CameraMotionParams, CameraTwistController
+from drake_grasp.control.camera_motion import CameraTwistController
 from drake_grasp.hand import HAND_JOINTS, HandAction
 from drake_grasp.objects import ObjectSpec
-from drake_grasp.paths import DIAGRAMS_DIR
-from drake_grasp.primitives.camera import SegmentationParams, SilhouetteCamera
+from drake_grasp.primitives.camera import SilhouetteCamera
 from drake_grasp.primitives.camera_model import CameraIntrinsics
-from drake_grasp.primitives.depth import DepthParams, DepthPrimitive
+from drake_grasp.primitives.depth import DepthPrimitive
 from drake_grasp.primitives.estimate import ObjectEstimate, ObjectEstimator
-from drake_grasp.primitives.principal_axis import PrincipalAxisParams, PrincipalAxisPrimitive
-from drake_grasp.primitives.resemblance import DEFAULT_ARCS, ResemblanceParams, ShapeResemblancePrimitive
-from drake_grasp.primitives.scores import SHAPES, ScoreParams
-from drake_grasp.primitives.sequencer import ExplorationSequencer, ExplorationPhase, SequencerParams
+from drake_grasp.primitives.principal_axis import PrincipalAxisPrimitive
+from drake_grasp.primitives.resemblance import ShapeResemblancePrimitive
+from drake_grasp.primitives.scores import SHAPES
+from drake_grasp.primitives.sequencer import ExplorationSequencer, ExplorationPhase
 from drake_grasp.simulation import AddReplay, StartSimulation, recording
-from drake_grasp.station import MakeStation, Scenario, Station, object_rest_pose
-from drake_grasp.yaml_config import load_named
-
-DEFAULT_CONFIG_FILE = DIAGRAMS_DIR / "perception.scenarios.yaml"
+from drake_grasp.perception_config import PerceptionConfig
+from drake_grasp.station import DEFAULT_SCENARIO_FILE, MakeStation, Scenario, Station, load_scenario, object_rest_pose
 
 
-@dataclasses.dataclass
-class PerceptionConfig:
-    """Every choice of the exploration. Load with `load_perception_config`."""
-
-    rate_hz: float = 20.0
-    start_height: float = 0.45
-    segmentation: SegmentationParams = dataclasses.field(default_factory=SegmentationParams)
-    sequencer: SequencerParams = dataclasses.field(default_factory=SequencerParams)
-    depth: DepthParams = dataclasses.field(default_factory=DepthParams)
-    axis: PrincipalAxisParams = dataclasses.field(default_factory=PrincipalAxisParams)
-    sphere: ResemblanceParams = dataclasses.field(default_factory=lambda: dataclasses.replace(DEFAULT_ARCS["sphere"]))
-    cylinder: ResemblanceParams = dataclasses.field(
-        default_factory=lambda: dataclasses.replace(DEFAULT_ARCS["cylinder"]))
-    box: ResemblanceParams = dataclasses.field(default_factory=lambda: dataclasses.replace(DEFAULT_ARCS["box"]))
-    scores: ScoreParams = dataclasses.field(default_factory=ScoreParams)
-    camera_motion: CameraMotionParams = dataclasses.field(default_factory=CameraMotionParams)
-    start_configuration: list[float] = dataclasses.field(default_factory=lambda: [0.0, 0.6, 0.0, 1.6, 0.0, 0.9, 0.0])
-
-    @property
-    def period(self) -> float:
-        return 1.0 / self.rate_hz
-
-    def validate(self) -> None:
-        if not (math.isfinite(self.rate_hz) and 10.0 <= self.rate_hz <= 30.0):
-            raise ValueError(f"rate_hz must be in [10, 30] Hz, got {self.rate_hz}")
-        if not (math.isfinite(self.start_height) and self.start_height > 0):
-            raise ValueError(f"start_height must be positive, got {self.start_height}")
-        if len(self.start_configuration) != 7:
-            raise ValueError("start_configuration needs 7 joint angles")
-        self.segmentation.validate()
-        self.sequencer.validate()
-        for shape in SHAPES:
-            getattr(self, shape).validate()
-
-
-def load_perception_config(filename: str | pathlib.Path = DEFAULT_CONFIG_FILE,
+def load_perception_config(filename: str | pathlib.Path = DEFAULT_SCENARIO_FILE,
                            name: str = "default") -> PerceptionConfig:
-    """Loads the named configuration from a YAML file of named configurations.
+    """The perception configuration of the scenario `name` in a scenario file (its `perception:`).
 
     Raises:
         ValueError: (one line) if the file cannot be read or does not match the schema.
     """
-    config = load_named(PerceptionConfig, filename, name, PerceptionConfig(), "perception config")
-    config.validate()
-    return config
+    return load_scenario(filename, name).perception
 
 
 # --- The Diagram -------------------------------------------------------------------------------------
@@ -290,13 +250,13 @@ def explore(scenario: Scenario, config: PerceptionConfig | None = None, object_s
 
     Args:
         scenario: the station scenario; `scenario.object` places the object.
-        config: the choices (default: diagrams/perception.scenarios.yaml, "default").
+        config: the choices (default: the scenario's `perception`).
         object_spec: the object, when already resolved.
         look_at: the point the camera starts above (default: the placement's x, y — where the object
             is expected; a trial passes the nominal placement, not the varied one).
         replay_html: if given, write a Meshcat replay of the exploration there.
     """
-    config = config or load_perception_config()
+    config = config or scenario.perception
     wall_start = time.perf_counter()
     exploration = MakeExploration(scenario, config, object_spec, replay=bool(replay_html))
     station = exploration.station

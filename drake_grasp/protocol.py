@@ -1,4 +1,4 @@
-"""The trial protocol of the paper's Sec. 5 and 6 (DESIGN.md §8), as scenario data.
+"""The trial protocol of the paper's Sec. 5 and 6 (docs/design.md §4.7), as scenario data.
 
 Success = after lifting the object 10 cm off the table, no obvious slip within 10 s: here, the object
 is off the table at the end and its pose relative to the palm moved less than 1 cm and 10 degrees

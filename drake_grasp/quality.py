@@ -1,4 +1,4 @@
-"""Grasp quality: the Ferrari–Canny ε metric over the L1 grasp wrench space (DESIGN.md §6).
+"""Grasp quality: the Ferrari–Canny ε metric over the L1 grasp wrench space (docs/design.md §4.5).
 
 Pure numpy/scipy, no Drake: the functions take plain arrays (contacts expressed in one frame) and
 return plain numbers, so they can run in inner loops (the Fig. 4 sweep, the Eigengrasp planner's
@@ -26,9 +26,9 @@ the Eigengrasp planner ranks by; numbers and definitions cited, no code taken fr
   is degenerate (the wrenches span less than 6 dimensions, e.g. any grasp with two point contacts:
   no wrench can have a moment about the line through the two contacts).
 
-Other implementations differ (DESIGN §6): Dex-Net scales torques by 1/median of the bounding-box
+Other implementations differ (docs/design.md §4.5): Dex-Net scales torques by 1/median of the bounding-box
 corner, OpenRAVE uses unit-length edges and the world origin. The torque scale and the edge count
-are parameters here; the contact-quality planner energy (DESIGN §7) uses the force-only 3-D variant,
+are parameters here; the contact-quality planner energy (docs/design.md §4.6) uses the force-only 3-D variant,
 available through :func:`wrench_space_quality` on the force rows of :func:`primitive_wrenches`.
 
 Caveat of the convention: the tangent frame depends on the contact normal's orientation relative to
@@ -176,7 +176,7 @@ def wrench_space_quality(wrenches) -> GraspQuality:
     """ε and volume of the convex hull of given wrenches, in any dimension d ≥ 1.
 
     Use it for variants of the metric (e.g. the force-only 3-D wrench space with per-contact scaled
-    cones of the contact-quality energy, DESIGN §7); :func:`grasp_quality` builds the wrenches for
+    cones of the contact-quality energy, docs/design.md §4.6); :func:`grasp_quality` builds the wrenches for
     the standard 6-D case.
 
     Args:
@@ -199,7 +199,7 @@ def wrench_space_quality(wrenches) -> GraspQuality:
 
 
 def grasp_quality(points, normals, mu, center, torque_scale, num_edges: int = 8) -> GraspQuality:
-    """ε (Ferrari–Canny, L1) and volume of a grasp's wrench space, DESIGN §6.
+    """ε (Ferrari–Canny, L1) and volume of a grasp's wrench space, docs/design.md §4.5.
 
     Args:
         points: (N, 3) contact points (metres), in any frame shared with ``normals`` and ``center``.
@@ -227,7 +227,7 @@ def grasp_quality(points, normals, mu, center, torque_scale, num_edges: int = 8)
 
 
 def epsilon_l1(points, normals, mu, center, torque_scale, num_edges: int = 8) -> float:
-    """The ε metric of a grasp (Ferrari–Canny over the L1 grasp wrench space), DESIGN §6.
+    """The ε metric of a grasp (Ferrari–Canny over the L1 grasp wrench space), docs/design.md §4.5.
 
     Same arguments as :func:`grasp_quality`, which also returns the hull volume.
 

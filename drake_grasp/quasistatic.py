@@ -9,7 +9,7 @@ through the object:
 * Closing: each finger turns about its joint axes. A point at most R from an axis moves at most
   R * dtheta when the joint turns by dtheta, so dtheta = (distance - margin) / R is safe.
 
-Closing follows the BarrettHand's clutch (DESIGN.md §3): in the coupled phase the distal joint turns
+Closing follows the BarrettHand's clutch (docs/design.md §4.1): in the coupled phase the distal joint turns
 at a third of the proximal rate; a proximal-link contact (or the proximal limit) makes the clutch
 break away and the distal joint closes alone until its link touches or reaches its limit; a distal
 contact in the coupled phase stops the whole finger. The spread is set first and stays. Fingers

@@ -50,6 +50,7 @@ from drake_grasp.control.gravity_compensation import GravityCompensation
 from drake_grasp.control.hand_controller import HandController, HandControllerParams, SetHandActuatorGains
 from drake_grasp.objects import AddObject, ObjectSpec, resolve_object
 from drake_grasp.paths import DIAGRAMS_DIR, RegisterPackage
+from drake_grasp.perception_config import PerceptionConfig
 from drake_grasp.protocol import TrialProtocol
 from drake_grasp.yaml_config import load_named
 
@@ -94,6 +95,7 @@ class Scenario:
     hand: HandControllerParams = dataclasses.field(default_factory=HandControllerParams)
     arm: ArmParams = dataclasses.field(default_factory=ArmParams)
     protocol: TrialProtocol = dataclasses.field(default_factory=TrialProtocol)
+    perception: PerceptionConfig = dataclasses.field(default_factory=PerceptionConfig)
 
 
 DEFAULT_SCENARIO_FILE = DIAGRAMS_DIR / "station.scenarios.yaml"
@@ -102,15 +104,16 @@ DEFAULT_SCENARIO_FILE = DIAGRAMS_DIR / "station.scenarios.yaml"
 def load_scenario(filename: str | pathlib.Path = DEFAULT_SCENARIO_FILE, scenario_name: str = "default") -> Scenario:
     """Loads the scenario `scenario_name` from a YAML file of named scenarios.
 
-    A scenario in another file than the default one starts from the default scenario
-    (diagrams/station.scenarios.yaml, "default") and overrides only what it says.
+    Every scenario but the default one itself (diagrams/station.scenarios.yaml, "default") starts
+    from the default scenario and overrides only what it says, nested fields included: a variant or
+    a user's file names just what it changes (`perception: segmentation: method: color`).
 
     Raises:
         ValueError: (one line) if the file cannot be read or does not match the Scenario schema.
     """
     filename = pathlib.Path(filename)
     defaults = Scenario()
-    if filename.resolve() != DEFAULT_SCENARIO_FILE.resolve():
+    if filename.resolve() != DEFAULT_SCENARIO_FILE.resolve() or scenario_name != "default":
         defaults = load_scenario(DEFAULT_SCENARIO_FILE, "default")
     scenario = load_named(Scenario, filename, scenario_name, defaults, "scenario")
     try:
@@ -151,6 +154,10 @@ def validate_scenario(scenario: Scenario) -> None:
     if not (contact.hydroelastic_modulus > 0 and math.isfinite(contact.hydroelastic_modulus)):
         raise ValueError(f"contact.hydroelastic_modulus must be > 0 Pa, got {contact.hydroelastic_modulus}")
     scenario.protocol.validate()
+    try:
+        scenario.perception.validate()
+    except ValueError as e:
+        raise ValueError(f"perception.{e}") from None
 
 
 @dataclasses.dataclass

@@ -1,7 +1,7 @@
 """One grasp trial: set up, execute a grasp plan, judge it with the paper's success test, record.
 
 Every method runs through the same simulate-and-judge step (`_execute`), so all are executed by the
-same arm, hand controller and timings, and judged by the same test (DESIGN.md §8): `run_trial` for a
+same arm, hand controller and timings, and judged by the same test (docs/design.md §4.7): `run_trial` for a
 given grasp plan (compliant grasps from ground truth, grasps planned by the Eigengrasp baseline), and
 `run_compliant_trial` for the paper's algorithm, which explores with the wrist camera and decides its
 grasp inside the same simulation (`control.supervisor`). In every trial:
@@ -157,10 +157,10 @@ def run_compliant_trial(scenario: Scenario, spec: ObjectSpec, *, seed: int, gras
     """
     from drake_grasp.control.supervisor import AddCompliantGraspSupervisor
     from drake_grasp.perception import (AddExplorationSequencer, AddVisualPrimitives, compare, ground_truth,
-                                        load_perception_config, start_camera_pose, start_configuration)
+                                        start_camera_pose, start_configuration)
 
     wall_start = time.perf_counter()
-    config = perception_config or load_perception_config()
+    config = perception_config or scenario.perception
     protocol = scenario.protocol
     variation = TrialVariation.draw(seed, protocol)
     nominal = np.array([scenario.object.x, scenario.object.y, 0.0])

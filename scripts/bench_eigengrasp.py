@@ -8,9 +8,9 @@ autograsp of the 20 best states), and what the plan found: ε of the three best 
 autograsp and which fingers touch.
 
 GraspIt! itself, built and run on a machine like ours, does 2,400-7,900 steps per second on these
-objects (DESIGN.md §7): a 70,000-step plan in 11-27 s.
+objects (docs/design.md §4.6): a 70,000-step plan in 11-27 s.
 
-Run: /work/venv/bin/python scripts/bench_eigengrasp.py [--objects a,b] [--steps N] [--seed S]
+Run: .venv/bin/python scripts/bench_eigengrasp.py [--objects a,b] [--steps N] [--seed S]
      [--energy contact|contact-quality] [--json FILE]
 Not a test: the numbers depend on the machine and its load.
 """
@@ -30,7 +30,7 @@ from baselines.eigengrasp import annealing
 from drake_grasp.objects import resolve_object
 
 FIG7_OBJECTS = ("sponge", "spectacle_case", "toy_bridge", "soccer_ball", "game_box", "bottle_case")
-GRASPIT_STEPS_PER_SECOND = (2_400, 7_900)  # DESIGN §7, measured on a machine like ours.
+GRASPIT_STEPS_PER_SECOND = (2_400, 7_900)  # docs/design.md §4.6, measured on a machine like ours.
 
 
 def main(argv=None) -> int:

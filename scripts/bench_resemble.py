@@ -8,7 +8,7 @@ Two modes:
   most 10 s of wall time per exploration.
 * --accuracy: explores every test object (the primitive shapes in several sizes, as catalogue shapes
   and as user meshes written here; the paper's nine objects), each placed with trial SEED's
-  variation (±1 cm, ±10° yaw: DESIGN §8), and prints per object the errors of centre, depth,
+  variation (±1 cm, ±10° yaw: docs/design.md §4.7), and prints per object the errors of centre, depth,
   principal axis and size against the truth at the end of the exploration, the three resemblances
   and whether the highest names the true class. Writes accuracy.json and accuracy.csv to --out.
 

@@ -1,19 +1,21 @@
-"""The Eigengrasp planner baseline (baselines/eigengrasp; DESIGN.md §7)."""
+"""The Eigengrasp planner baseline (baselines/eigengrasp; docs/design.md §4.6)."""
 
 import json
 import math
 
 import numpy as np
+import trimesh
+import trimesh.triangles
 import pytest
 from pydrake.math import RigidTransform, RotationMatrix
 
 from baselines.eigengrasp import annealing, eigengrasps, energy, search_space
 from baselines.eigengrasp import virtual_contacts as vc
-from baselines.eigengrasp.object_distance import ConvexDistance, PrimitiveDistance
+from baselines.eigengrasp.object_distance import ConvexPiecesDistance, PrimitiveDistance
 from baselines.eigengrasp.planner import EigengraspPlanner, _add_unique
 from baselines.eigengrasp.scene import HandObjectScene
 from drake_grasp import cli, hand
-from drake_grasp.objects import paper_object, resolve_object, sphere_object
+from drake_grasp.objects import ShapePiece, _cached_hull_obj, paper_object, resolve_object, sphere_object
 from drake_grasp.quality import friction_cone_edges, wrench_space_quality
 
 # The palm on top of a 10 cm sphere, facing down, 0.5 mm above it.
@@ -165,30 +167,70 @@ def test_primitive_distances_match_drake():
             np.testing.assert_allclose(g[i], np.asarray(best.grad_W).ravel(), atol=1e-6)
 
 
-def test_convex_distances_are_exact_or_flagged_lower_bounds():
-    spec = paper_object("spectacle_case")
-    scene = HandObjectScene(spec)
-    query = scene._query_port.Eval(scene._sg_context)
-    case_id = scene._drake_pieces[0]
+def _brute_force_distances(pieces, points):
+    """Signed distance to a union of convex pieces over every triangle of every piece (reference)."""
+    best = np.full(len(points), np.inf)
+    for piece in pieces:
+        vertices = trimesh.load(piece.mesh_path, force="mesh", process=False).vertices
+        hull = trimesh.convex.convex_hull(vertices @ piece.X_OP.rotation().matrix().T + piece.X_OP.translation())
+        triangles = hull.triangles
+        closest = np.array([trimesh.triangles.closest_point(triangles, np.tile(p, (len(triangles), 1)))
+                            for p in points])  # (N, F, 3)
+        unsigned = np.linalg.norm(closest - points[:, None, :], axis=2).min(axis=1)
+        inside = np.all(points @ hull.face_normals.T < np.einsum('fj,fj->f', hull.face_normals, triangles[:, 0]), axis=1)
+        best = np.minimum(best, np.where(inside, -unsigned, unsigned))
+    return best
+
+
+def test_convex_piece_distances_are_exact(monkeypatch):
     rng = np.random.default_rng(5)
     directions = rng.normal(size=(150, 3))
     directions /= np.linalg.norm(directions, axis=1, keepdims=True)
     points = directions * rng.uniform(0.0, 0.15, (150, 1))
-    d, g, exact = ConvexDistance(spec.pieces[0])(points)
-    assert exact.mean() > 0.9
-    for i, p in enumerate(points):
-        r = next(r for r in query.ComputeSignedDistanceToPoint(p) if r.id_G == case_id)
-        if exact[i]:
-            assert d[i] == pytest.approx(r.distance, abs=1e-7)
-            np.testing.assert_allclose(g[i], np.asarray(r.grad_W).ravel(), atol=1e-5)
-        else:
-            assert d[i] <= r.distance + 1e-9
-
-
-def test_scene_collision_test_and_drake_distances_for_a_convex_object():
+    # One piece (the spectacle case), against Drake.
     spec = paper_object("spectacle_case")
     scene = HandObjectScene(spec)
-    assert scene.uses_drake_distances
+    query = scene._query_port.Eval(scene._sg_context)
+    (case_id,) = scene._plant.GetCollisionGeometriesForBody(scene._plant.GetBodyByName(spec.name))
+    d, g = ConvexPiecesDistance(spec.pieces)(points)
+    for i, p in enumerate(points):
+        r = next(r for r in query.ComputeSignedDistanceToPoint(p) if r.id_G == case_id)
+        assert d[i] == pytest.approx(r.distance, abs=1e-7)
+        np.testing.assert_allclose(g[i], np.asarray(r.grad_W).ravel(), atol=1e-5)
+    # Three posed, overlapping pieces of different facet counts, against every triangle. Coarse
+    # hulls put many closest points on edges and vertices.
+    rng = np.random.default_rng(5)
+    pieces = []
+    for k, n in enumerate((6, 20, 40)):
+        path = _cached_hull_obj(f"test_piece{k}", rng.normal(scale=0.03, size=(n, 3)))
+        pieces.append(ShapePiece("convex", (), p_OP=tuple(rng.uniform(-0.03, 0.03, 3)),
+                                 rpy_OP=tuple(rng.uniform(-1, 1, 3)), mesh_path=path))
+    points = rng.uniform(-0.15, 0.15, (600, 3))
+    reference = _brute_force_distances(pieces, points)
+    d, g = ConvexPiecesDistance(pieces)(points)
+    np.testing.assert_allclose(d, reference, atol=1e-9)
+    np.testing.assert_allclose(np.linalg.norm(g, axis=1), 1.0, atol=1e-9)
+    # The gradient points from the closest point to the point: stepping back along it lands on
+    # the surface.
+    outside = d > 1e-4
+    np.testing.assert_allclose(_brute_force_distances(pieces, points[outside] - d[outside, None] * g[outside]),
+                               0.0, atol=1e-9)
+    # The last fallback (the facets visible from the point) alone, where the edge fallback is
+    # skipped: exact too (spied on to be sure it ran).
+    projections = []
+    project = trimesh.triangles.closest_point
+    monkeypatch.setattr(trimesh.triangles, "closest_point", lambda *a: projections.append(1) or project(*a))
+    monkeypatch.setattr(ConvexPiecesDistance, "_edge_fallback", lambda *a: None)
+    d2, g2 = ConvexPiecesDistance(pieces)(points)
+    assert projections
+    np.testing.assert_allclose(d2, reference, atol=1e-9)
+    np.testing.assert_allclose(g2, g, atol=1e-6)
+
+
+def test_scene_collision_test_and_distances_for_a_convex_object():
+    spec = paper_object("spectacle_case")
+    scene = HandObjectScene(spec)
+    assert not scene.uses_drake_distances
     q = eigengrasps.joint_angles([0.0, 0.0])
     scene.set_hand(RigidTransform([0.0, 0.0, -0.05]), q)  # the palm cuts through the case
     assert scene.in_collision()
@@ -200,7 +242,7 @@ def test_scene_collision_test_and_drake_distances_for_a_convex_object():
     points = np.array([X_OH @ p for p in points_H])
     d, g = scene.contact_distances(points)
     query = scene._query_port.Eval(scene._sg_context)
-    case_id = scene._drake_pieces[0]
+    (case_id,) = scene._plant.GetCollisionGeometriesForBody(scene._plant.GetBodyByName(spec.name))
     for i, p in enumerate(points):
         r = next(r for r in query.ComputeSignedDistanceToPoint(p) if r.id_G == case_id)
         assert d[i] == pytest.approx(r.distance, abs=1e-6)

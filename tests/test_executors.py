@@ -43,12 +43,6 @@ def test_local_executor_yields_every_task_once_with_its_index():
 
 # --- Ray: a local instance, started once for the tests below. -------------------------------------
 
-def _short_scenario(tmp_path):
-    path = tmp_path / "short.yaml"  # a 0.5 s hold instead of 10 s, to keep the trials short
-    path.write_text("default:\n  protocol:\n    execution:\n      hold_time: 0.5\n")
-    return str(path)
-
-
 def _records(csv_path) -> dict:
     """Rows by key, without the wall time (the only field that may differ between runs) and the line
     checksum that covers it."""
@@ -76,8 +70,9 @@ class _InterruptAfterFirstTrial(io.StringIO):
             raise KeyboardInterrupt
 
 
-def test_ray_gives_the_local_records_and_resumes_after_an_interruption(ray_instance, tmp_path):
-    scenario = _short_scenario(tmp_path)
+def test_ray_gives_the_local_records_and_resumes_after_an_interruption(ray_instance, tmp_path,
+                                                                     short_scenario_file):
+    scenario = str(short_scenario_file)
     specs = [TrialSpec("sponge", "oracle", "box", seed, scenario) for seed in (0, 1)]
     run_trials(specs, tmp_path / "local.csv", workers=1, progress=io.StringIO())
     with executors.make_executor("ray", workers=2) as ray_executor:

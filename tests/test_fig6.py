@@ -38,14 +38,13 @@ def test_config_rejects_no_trials():
         fig6.Fig6Config(objects=("apple",), trials=0)
 
 
-def test_a_small_real_sweep_runs_resumes_and_plots(tmp_path):
+def test_a_small_real_sweep_runs_resumes_and_plots(tmp_path, short_scenario_file):
     # Real trials (oracle estimates, 0.5 s hold, to stay short), through the same pool and table.
     import io
 
     from drake_grasp.experiments.runner import run_trials
 
-    scenario = tmp_path / "short.yaml"
-    scenario.write_text("default:\n  protocol:\n    execution:\n      hold_time: 0.5\n")
+    scenario = short_scenario_file
     config = fig6.Fig6Config(objects=("sponge",), trials=1, seed=5, method="oracle")
     specs = fig6.trial_specs(config, str(scenario))
     table = run_trials(specs, tmp_path / "fig6.csv", workers=1, progress=io.StringIO())
@@ -58,7 +57,7 @@ def test_a_small_real_sweep_runs_resumes_and_plots(tmp_path):
     assert all(p.exists() for p in fig6.plot(stats, tmp_path))
 
 
-def test_the_study_runs_on_a_users_own_objects(tmp_path, capsys):
+def test_the_study_runs_on_a_users_own_objects(tmp_path, capsys, short_scenario_file):
     # --objects: the same sweep, table and figure for any objects (here a primitive and a mesh file).
     import trimesh
 
@@ -66,8 +65,7 @@ def test_the_study_runs_on_a_users_own_objects(tmp_path, capsys):
 
     mesh = tmp_path / "brick.stl"
     trimesh.creation.box((0.05, 0.12, 0.05)).export(mesh)
-    scenario = tmp_path / "short.yaml"
-    scenario.write_text("default:\n  protocol:\n    execution:\n      hold_time: 0.5\n")
+    scenario = short_scenario_file
     out = tmp_path / "out"
     assert cli.main(["fig6", "--objects", f"cube:0.06,{mesh}", "--trials", "1", "--method", "oracle",
                      "--workers", "1", "--scenario", str(scenario), "--out", str(out), "--json"]) == 0

@@ -95,7 +95,7 @@ def test_fingertip_matches_dh_table(finger, spread, proximal, distal):
 
 def test_open_hand_is_flat_and_spherical_mode_is_120_degrees_apart():
     # In the spherical mode (each spread joint at 60 deg) the three fingers point 120 deg apart
-    # (DESIGN.md §1): compare the directions in which the open fingers point, knuckle to tip.
+    # (docs/design.md §2): compare the directions in which the open fingers point, knuckle to tip.
     angles = []
     for finger in (1, 2, 3):
         knuckle = np.array([{1: -0.025, 2: 0.025, 3: 0.0}[finger], 0, 0])

@@ -1,6 +1,6 @@
 """Tests of the object catalogue (drake_grasp.objects) and its contact snippets (.contact).
 
-(a) the nine paper objects and the primitive families have DESIGN §5's sizes and masses;
+(a) the nine paper objects and the primitive families have the sizes and masses of docs/design.md §4.3;
 (b) each paper object, dropped a few mm onto a rigid table in its nominal pose, comes to rest and
     then stays put (no creep) at both the 5 ms and 10 ms time steps the station may use, with no
     parser or simulation warnings;
@@ -24,7 +24,7 @@ from drake_grasp import objects
 from drake_grasp.contact import ContactParameters, rigid_proximity_sdf
 from drake_grasp.objects import ObjectError
 
-# DESIGN §5's table: extents (x, y, z) in O (m; the banana's y, its sagitta plus diameter, is not
+# docs/design.md §4.3's table: extents (x, y, z) in O (m; the banana's y, its sagitta plus diameter, is not
 # given), mass (kg), class, and the grasp whose shape it resembles.
 PAPER_TABLE = {
     "banana": ((0.18, None, 0.036), 0.12, "annulus", "cylinder"),

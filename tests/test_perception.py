@@ -51,13 +51,16 @@ def ball():
 def test_config_loads_and_rejects_bad_files(tmp_path):
     config = load_perception_config()
     assert 10 <= config.rate_hz <= 30 and config.segmentation.method == "label"
-    assert load_perception_config(name="color").segmentation.method == "color"
+    # A variant of the scenario changes only what it names: here the segmentation (from the command
+    # line: --scenario-name color_segmentation).
+    color = load_perception_config(name="color_segmentation")
+    assert color.segmentation.method == "color" and color.rate_hz == config.rate_hz
     bad = tmp_path / "bad.yaml"
-    bad.write_text("default:\n  rate_hz: 100.0\n")
+    bad.write_text("default:\n  perception:\n    rate_hz: 100.0\n")
     with pytest.raises(ValueError, match="rate_hz") as e:
         load_perception_config(bad)
     assert "\n" not in str(e.value)
-    bad.write_text("default:\n  depth: [oops\n")
+    bad.write_text("default:\n  perception:\n    depth: [oops\n")
     with pytest.raises(ValueError, match="malformed"):
         load_perception_config(bad)
 

@@ -1,4 +1,4 @@
-"""Tests of the ε metric (drake_grasp.quality), DESIGN.md §6.
+"""Tests of the ε metric (drake_grasp.quality), docs/design.md §4.5.
 
 Expected values come from hand derivations (in the comments) or from references computed here
 without qhull: a brute-force facet enumeration (every d-subset of the wrenches spans a hyperplane;

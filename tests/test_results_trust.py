@@ -1,12 +1,10 @@
 """Results you can trust: fingerprints, damaged lines, the folder lock, output paths checked first,
 exit codes, and a small fault injection (a sweep killed with SIGKILL, a damaged line, a rerun)."""
 
-import contextlib
 import csv
 import io
 import os
 import pathlib
-import signal
 import subprocess
 import sys
 import time

@@ -82,13 +82,6 @@ def test_no_object_or_no_reach_ends_the_sequence_with_the_reason():
     assert far.decision(context).executed == "spherical"
 
 
-@pytest.fixture(scope="module")
-def short_scenario():
-    scenario = load_scenario()
-    scenario.protocol.execution.hold_time = 0.5
-    return scenario
-
-
 def test_the_whole_algorithm_grasps_the_soccer_ball_from_the_camera_alone(short_scenario):
     record = run_compliant_trial(short_scenario, paper_object("soccer_ball"), seed=1)
     assert record.success, record.summary()
@@ -100,9 +93,8 @@ def test_the_whole_algorithm_grasps_the_soccer_ball_from_the_camera_alone(short_
 
 
 @pytest.mark.slow
-def test_the_cli_runs_a_forced_grasp_and_writes_its_record(tmp_path, capsys):
-    scenario_file = tmp_path / "short.yaml"
-    scenario_file.write_text("default:\n  protocol:\n    execution:\n      hold_time: 0.5\n")
+def test_the_cli_runs_a_forced_grasp_and_writes_its_record(tmp_path, capsys, short_scenario_file):
+    scenario_file = short_scenario_file
     assert cli.main(["trial", "--object", "spectacle_case", "--method", "compliant", "--grasp", "cylindrical",
                      "--seed", "3", "--json", "--scenario", str(scenario_file), "--out", str(tmp_path)]) == 0
     record = json.loads(capsys.readouterr().out)

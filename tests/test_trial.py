@@ -5,22 +5,12 @@ import json
 import math
 
 import numpy as np
-import pytest
 from pydrake.math import RigidTransform, RotationMatrix
 
 from drake_grasp import cli
 from drake_grasp.grasps import oracle_estimate, plan_compliant_grasp
 from drake_grasp.objects import paper_object
-from drake_grasp.station import load_scenario
 from drake_grasp.trial import MISSED, UNREACHABLE, run_trial
-
-
-@pytest.fixture
-def short_scenario():
-    """The default scenario with a 2 s hold: the default suite's short version of a trial."""
-    scenario = load_scenario()
-    scenario.protocol.execution.hold_time = 2.0
-    return scenario
 
 
 def _oracle(grasp):
@@ -58,17 +48,15 @@ def test_an_unreachable_grasp_is_a_failed_trial_not_a_crash(short_scenario):
 
 
 def test_same_seed_same_trial(short_scenario):
-    short_scenario.protocol.execution.hold_time = 0.5
     a = run_trial(short_scenario, paper_object("sponge"), _oracle("box"), seed=3, method="oracle", grasp="box")
     b = run_trial(short_scenario, paper_object("sponge"), _oracle("box"), seed=3, method="oracle", grasp="box")
     assert a.variation == b.variation
     assert a.lift == b.lift and a.slip_distance == b.slip_distance and a.success == b.success
 
 
-def test_trial_cli_json_and_errors(capsys, tmp_path, monkeypatch):
-    scenario_file = tmp_path / "short.yaml"
+def test_trial_cli_json_and_errors(capsys, tmp_path, monkeypatch, short_scenario_file):
     # A user's scenario file overrides only what it says, on top of the default scenario.
-    scenario_file.write_text("default:\n  protocol:\n    execution:\n      hold_time: 0.5\n")
+    scenario_file = short_scenario_file
     assert cli.main(["trial", "--object", "bottle_case", "--grasp", "cylindrical", "--oracle", "--seed", "2",
                      "--json", "--scenario", str(scenario_file)]) == 0
     record = json.loads(capsys.readouterr().out)
@@ -98,10 +86,9 @@ def test_a_planned_grasp_runs_through_the_same_runner(short_scenario):
     assert not record.approach_stopped_on_contact
 
 
-def test_trial_cli_runs_the_eigengrasp_planner_through_the_same_runner(capsys, tmp_path):
+def test_trial_cli_runs_the_eigengrasp_planner_through_the_same_runner(capsys, tmp_path, short_scenario_file):
     # Plan (a short annealing, table loaded), execute the best grasp the arm can reach, judge.
-    scenario_file = tmp_path / "short.yaml"
-    scenario_file.write_text("default:\n  protocol:\n    execution:\n      hold_time: 0.5\n")
+    scenario_file = short_scenario_file
     assert cli.main(["trial", "--object", "sponge", "--method", "eigengrasp", "--steps", "35000", "--seed", "1",
                      "--json", "--scenario", str(scenario_file)]) == 0
     record = json.loads(capsys.readouterr().out)

@@ -1,4 +1,4 @@
-"""GraspIt!'s Eigengrasp simulated-annealing planner, reimplemented (DESIGN.md §7).
+"""GraspIt!'s Eigengrasp simulated-annealing planner, reimplemented (docs/design.md §4.6).
 
 Modules, one concept each:
 

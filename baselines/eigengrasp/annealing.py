@@ -1,4 +1,4 @@
-"""Very fast simulated annealing as GraspIt! runs it (src/EGPlanner/simAnn.cpp; DESIGN.md §7).
+"""Very fast simulated annealing as GraspIt! runs it (src/EGPlanner/simAnn.cpp; docs/design.md §4.6).
 
 * Schedule (Ingber): T(k) = T0 exp(−c k^(1/D)), T0 = 1e6, c = 7, D = 8, for both the neighbour
   distribution and the acceptance test (GraspIt!'s YC = HC = 7, YDIMS = HDIMS = 8).
@@ -24,7 +24,7 @@ import numpy as np
 
 from baselines.eigengrasp.search_space import SEARCH_VARIABLES
 
-# --- DESIGN §7 (simAnn.cpp, ANNEAL_DEFAULT). ----------------------------------------------------
+# --- docs/design.md §4.6 (simAnn.cpp, ANNEAL_DEFAULT). --------------------------------------------
 T0 = 1.0e6  # DEF_T0
 COOLING_C = 7.0  # YC = HC
 COOLING_DIMENSIONS = 8  # YDIMS = HDIMS
@@ -38,7 +38,7 @@ MAX_NEIGHBOR_TRIES = 11  # simAnn.cpp: attempts 0..maxAttempts (= 10) while the 
 MAX_REDRAWS = 100
 _TINY = 1.0e-7  # simAnn.cpp TINY: values this close outside the range are put on its end.
 
-# --- DESIGN §7 (simAnnPlanner.cpp, egPlanner.cpp). ----------------------------------------------
+# --- docs/design.md §4.6 (simAnnPlanner.cpp, egPlanner.cpp). --------------------------------------
 BEST_LIST_SIZE = 20  # BEST_LIST_SIZE
 MERGE_DISTANCE = 0.2  # addToListOfUniqueSolutions(..., 0.2)
 OPEN_LIST_ENERGY = 1.0e5  # a state enters a list that is not full when its energy is below this

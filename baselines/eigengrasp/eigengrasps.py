@@ -1,14 +1,15 @@
-"""The BarrettHand's eigengrasps: two amplitudes -> the hand's joint angles (DESIGN.md §7).
+"""The BarrettHand's eigengrasps: two amplitudes -> the hand's joint angles (docs/design.md §4.6).
 
 GraspIt! searches the Barrett's posture in a 2-D eigengrasp subspace of its 4 DOFs
 ``[spread, flex_1, flex_2, flex_3]`` (spread of each of F1 and F2, and the proximal flexion of each
 finger; rad): DOF values = origin + Σ aᵢ eᵢ, clamped to the joint limits (GraspIt!
 ``PostureStateEigen::getHandDOF`` calls ``Hand::checkSetDOFVals``, which clamps). Sources:
-GraspIt! models/robots/Barrett/eigen/barrett_eigen.xml and src/EGPlanner/searchStateImpl.cpp, via
-DESIGN §7; Ciocarlie & Allen, IJRR 2009.
+GraspIt! models/robots/Barrett/eigen/barrett_eigen.xml and src/EGPlanner/searchStateImpl.cpp
+(docs/design.md §4.6); Ciocarlie & Allen, IJRR 2009.
 
 Our model has 8 joints. A GraspIt! flexion DOF drives both joints of a finger through the clutch in
-free motion (distal = proximal / 3, DESIGN §3), so a flexion f gives proximal = f and distal = f / 3.
+free motion (distal = proximal / 3, docs/design.md §4.1), so a flexion f gives proximal = f and
+distal = f / 3.
 Joint limits are our model's (hand.py): proximal 0-140 deg (GraspIt!'s Barrett model allows 144),
 distal 0-48 deg, spread 0-180 deg.
 
@@ -21,7 +22,7 @@ import numpy as np
 
 from drake_grasp import hand
 
-# --- DESIGN §7 (barrett_eigen.xml). DOF order: [spread, flex_1, flex_2, flex_3], rad. -------------
+# --- docs/design.md §4.6 (barrett_eigen.xml). DOF order: [spread, flex_1, flex_2, flex_3], rad. ---
 EIGENGRASPS = np.array([
     [1.0, 0.0, 0.0, 0.0],  # EG0: spread alone.
     np.array([0.0, 1.0, 1.0, 1.0]) / np.sqrt(3.0),  # EG1: the three flexions together, unit length.
@@ -32,7 +33,7 @@ EIGENGRASP_ORIGIN = np.array([1.13, 0.79, 0.79, 0.79])  # spread 64.7 deg, finge
 # PostureStateEigen::createVariables).
 AMPLITUDE_RANGE = (-4.0, 4.0)
 AMPLITUDE_MAX_JUMP = (AMPLITUDE_RANGE[1] - AMPLITUDE_RANGE[0]) / 4.0
-# The planner's reset posture: both amplitudes at their minimum (DESIGN §7), i.e. the hand open.
+# The planner's reset posture: both amplitudes at their minimum (docs/design.md §4.6), i.e. the hand open.
 RESET_AMPLITUDES = (AMPLITUDE_RANGE[0], AMPLITUDE_RANGE[0])
 
 NUM_EIGENGRASPS = len(EIGENGRASPS)

@@ -1,7 +1,7 @@
-"""The planner's two energies, on plain arrays (DESIGN.md §7).
+"""The planner's two energies, on plain arrays (docs/design.md §4.6).
 
-Both are GraspIt!'s (src/EGPlanner/energy/contactEnergy.cpp and guidedPotentialQualityEnergy.cpp,
-numbers via DESIGN §7), computed from the virtual contacts of the hand (virtual_contacts.py): each
+Both are GraspIt!'s (src/EGPlanner/energy/contactEnergy.cpp and guidedPotentialQualityEnergy.cpp;
+docs/design.md §4.6), computed from the virtual contacts of the hand (virtual_contacts.py): each
 contact i has an outward unit normal n_i and a vector p_i from the contact to the closest point of
 the object. GraspIt!'s constants are in millimetres: distances are converted from metres to mm at
 the start of each function (``MM_PER_M``), and the energies come out in GraspIt!'s units.
@@ -31,15 +31,15 @@ ENERGIES = ("contact", "contact-quality")
 
 MM_PER_M = 1000.0  # GraspIt!'s lengths are in mm.
 
-# --- DESIGN §7 (contactEnergy.cpp). --------------------------------------------------------------
+# --- docs/design.md §4.6 (contactEnergy.cpp). -----------------------------------------------------
 NORMAL_WEIGHT = 50.0  # mm per unit of (1 − n̂·p̂): GraspIt!'s "d * 100.0 / 2.0".
 
-# --- DESIGN §7 (guidedPotentialQualityEnergy.cpp). ----------------------------------------------
+# --- docs/design.md §4.6 (guidedPotentialQualityEnergy.cpp). --------------------------------------
 QUALITY_DISTANCE_MM = 50.0  # contacts farther than this get factor 0.
 QUALITY_MIN_COSINE = 0.7  # contacts whose normal is farther than ~45° from p get factor 0.
 QUALITY_COUNT_FACTOR = 0.25  # a contact "counts" when its factor exceeds this,
 QUALITY_MIN_CONTACTS = 3  # and the quality branch needs this many counting contacts.
-QUALITY_CONE_EDGES = 8  # edges of each linearised friction cone (the project's ε convention, DESIGN §6).
+QUALITY_CONE_EDGES = 8  # edges of each linearised friction cone (ε convention: docs/design.md §4.5).
 
 
 def contact_energy(normals, distances, directions) -> float:

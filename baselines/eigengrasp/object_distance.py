@@ -3,10 +3,9 @@
 The contact energy (DESIGN.md §7) needs, for each of the 19 virtual contacts, the vector to the
 closest point of the object. For the primitive pieces our objects are built of (sphere, box,
 cylinder, capsule; objects.py) the closest point has a closed form, evaluated here in numpy for
-all contacts and all pieces of a kind at once (the planner's inner loop). For a convex mesh piece
-the distance is exact, in numpy, wherever the closest point lies inside a facet (or the point is
-inside the piece); the other points (closest point on an edge or a vertex) are flagged and left to
-Drake's exact pair queries (scene.py), as are ellipsoids.
+all contacts and all pieces of a kind at once (the planner's inner loop). Convex mesh pieces are
+handled all together too, exactly, from their hulls' planes (``ConvexPiecesDistance``). Ellipsoids
+are left to Drake's exact pair queries (scene.py).
 
 Conventions: points, distances in metres, in the object frame O. For each point the result is the
 signed distance to the union of the pieces (negative inside) and the unit outward gradient of that
@@ -19,6 +18,7 @@ from __future__ import annotations
 
 import numpy as np
 import trimesh
+import trimesh.triangles
 from scipy.spatial import ConvexHull
 
 from drake_grasp.objects import ShapePiece
@@ -175,93 +175,182 @@ def _capsule(q, size):
     return d, g
 
 
-class ConvexDistance:
-    """Distances from points to one convex mesh piece, exact where the closest point is in a facet.
+class ConvexPiecesDistance:
+    """Exact distances from points to the union of an object's convex mesh pieces, all at once.
 
-    With the piece's hull as planes n_f · x + c_f ≤ 0 (unit n_f), the plane distance
-    s = max_f (n_f · q + c_f) is the exact signed distance for a point q inside, and for a point
-    outside whose projection q − s n_f onto the maximising facet's plane lies in that facet.
-    Otherwise the closest point x of that facet's boundary (an edge or a vertex) is the candidate,
-    and it is the closest point of the piece exactly when (q − x) · (v − x) ≤ 0 for every hull
-    vertex v (the optimality condition of a projection onto a convex set). Points that fail both
-    tests are flagged as not exact; their distance is then the plane distance, a lower bound.
+    Each piece's hull is a set of planes n_f · x + c_f ≤ 0 (unit n_f), expressed in O once, padded
+    to a common facet count so that one array product gives every point's plane distances to every
+    piece. Per (point, piece), the plane distance s = max_f (n_f · q + c_f) is the exact signed
+    distance for a point inside, and for a point outside whose projection q − s n_f onto the
+    maximising facet's plane lies in that facet; in general it is a lower bound. Pieces are then
+    culled: a piece whose lower bound is not below the point's smallest exact distance, or above the
+    distance to the nearest vertex of any piece, cannot be the closest. The others get exact
+    distances, cheap tests first, culling again between them:
+
+    1. the closest point x of the maximising facet's boundary (an edge or a vertex), accepted when
+       (q − x) · (v − x) ≤ 0 for every hull vertex v (the optimality condition of a projection onto
+       a convex set); this settles most pairs;
+    2. the piece's nearest vertex w, accepted by the same test (often the answer for a far point
+       near a corner that is not on the maximising facet);
+    3. the closest of the closest points of the facets visible from q (s_f > 0), one of which holds
+       the piece's closest point (trimesh's point-triangle projection), skipping those whose
+       bounding sphere is farther than the piece's nearest vertex.
+
+    The union's distance is the smallest over the pieces (inside a piece: the most negative).
     """
 
-    def __init__(self, piece: ShapePiece, tolerance: float = 1e-9):
+    def __init__(self, pieces: tuple[ShapePiece, ...] | list[ShapePiece], tolerance: float = 1e-9):
         """
         Args:
-            piece: A "convex" piece (its mesh_path's vertices, posed by X_OP).
-            tolerance: Slack of the in-facet test, m.
+            pieces: "convex" pieces (each its mesh_path's vertices, posed by X_OP).
+            tolerance: Slack of the in-facet and optimality tests, m.
         """
-        if piece.kind != "convex":
-            raise ValueError(f"expected a convex piece, got a {piece.kind}")
-        vertices = np.asarray(trimesh.load(piece.mesh_path, force="mesh", process=False).vertices, dtype=float)
-        hull = ConvexHull(vertices)
-        self._normals = hull.equations[:, :3].copy()  # (F, 3), unit, outward
-        self._offsets = hull.equations[:, 3].copy()  # (F,)
-        triangles = hull.points[hull.simplices]  # (F, 3, 3)
+        hulls = []
+        for piece in pieces:
+            if piece.kind != "convex":
+                raise ValueError(f"expected convex pieces, got a {piece.kind}")
+            vertices_P = np.asarray(trimesh.load(piece.mesh_path, force="mesh", process=False).vertices, dtype=float)
+            X_OP = piece.X_OP
+            hulls.append(ConvexHull(vertices_P @ X_OP.rotation().matrix().T + X_OP.translation()))
+        if not hulls:
+            raise ValueError("no convex piece")
+        num_facets = max(len(h.simplices) for h in hulls)
+        num_vertices = max(len(h.vertices) for h in hulls)
+        P = len(hulls)
+        # Padding facets have offset −inf: never the maximising one, never visible.
+        self._normals = np.zeros((P, num_facets, 3))
+        self._offsets = np.full((P, num_facets), -np.inf)
+        self._triangles = np.zeros((P, num_facets, 3, 3))
+        # Padding vertices repeat a real one, which changes no maximum over the vertices.
+        self._vertices = np.empty((P, num_vertices, 3))
+        for p, hull in enumerate(hulls):
+            F = len(hull.simplices)
+            self._normals[p, :F] = hull.equations[:, :3]
+            self._offsets[p, :F] = hull.equations[:, 3]
+            self._triangles[p, :F] = hull.points[hull.simplices]
+            self._triangles[p, F:] = self._triangles[p, 0]
+            vertices = hull.points[hull.vertices]
+            self._vertices[p] = vertices[np.minimum(np.arange(num_vertices), len(vertices) - 1)]
         # In-plane outward normals of each facet's three edges, and their offsets.
-        edges = np.roll(triangles, -1, axis=1) - triangles
-        edge_normals = np.cross(edges, self._normals[:, None, :])
-        opposite = np.roll(triangles, -2, axis=1)
-        flip = np.einsum("fej,fej->fe", opposite - triangles, edge_normals) > 0.0
+        triangles = self._triangles
+        edges = np.roll(triangles, -1, axis=2) - triangles
+        edge_normals = np.cross(edges, self._normals[:, :, None, :])
+        opposite = np.roll(triangles, -2, axis=2)
+        flip = np.einsum("pfej,pfej->pfe", opposite - triangles, edge_normals) > 0.0
         edge_normals[flip] *= -1.0
-        edge_normals /= np.linalg.norm(edge_normals, axis=2, keepdims=True)
+        edge_normals /= np.maximum(np.linalg.norm(edge_normals, axis=3, keepdims=True), _TINY)
         self._edge_normals = edge_normals
-        self._edge_offsets = np.einsum("fej,fej->fe", edge_normals, triangles) + tolerance
-        self._triangles = triangles
+        self._edge_offsets = np.einsum("pfej,pfej->pfe", edge_normals, triangles) + tolerance
         self._edges = edges
-        self._edge_lengths_sq = np.einsum("fej,fej->fe", edges, edges)
-        self._vertices = hull.points[hull.vertices]
+        self._edge_lengths_sq = np.maximum(np.einsum("pfej,pfej->pfe", edges, edges), _TINY)
         self._tolerance = tolerance
-        X_OP = piece.X_OP
-        self._R_OP = X_OP.rotation().matrix()
-        self._p_OP = X_OP.translation()
+        self._facet_centres = triangles.mean(axis=2)  # (P, F, 3)
+        self._facet_radii = np.linalg.norm(triangles - self._facet_centres[:, :, None, :], axis=3).max(axis=2)
+        self._normals_rows = self._normals.reshape(-1, 3)  # (P F, 3), for one matrix product
+        self._vertex_rows = self._vertices.reshape(-1, 3)  # (P V, 3)
+        self._vertex_sq = np.einsum("vj,vj->v", self._vertex_rows, self._vertex_rows)
 
     @property
-    def num_facets(self) -> int:
+    def num_pieces(self) -> int:
         return len(self._normals)
 
-    def __call__(self, points_O: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """Signed distances, outward unit gradients (in O) and which of them are exact.
+    def __call__(self, points_O: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Signed distances and outward unit gradients at the points.
 
         Args:
             points_O: (N, 3) query points in O, m.
 
         Returns:
-            (distance (N,) m, gradient (N, 3), exact (N,) bool). Where not exact, the distance is
-            a lower bound of the true one and the gradient is the maximising facet's normal.
+            (distance (N,) m, gradient (N, 3) unit, in O) of the union of the pieces.
         """
-        q = (points_O - self._p_OP) @ self._R_OP
-        s = q @ self._normals.T + self._offsets
-        rows = np.arange(len(q))
-        facet = np.argmax(s, axis=1)
-        d = s[rows, facet]
-        n = self._normals[facet]
-        foot = q - d[:, None] * n
-        in_facet = np.all(np.einsum("nej,nj->ne", self._edge_normals[facet], foot) <= self._edge_offsets[facet],
-                          axis=1)
+        q = np.asarray(points_O, dtype=float)
+        N, (P, F) = len(q), self._offsets.shape
+        s = (q @ self._normals_rows.T).reshape(N, P, F) + self._offsets  # (N, P, F)
+        facet = np.argmax(s, axis=2)  # (N, P)
+        d = s.max(axis=2)  # (N, P), lower bounds
+        piece = np.broadcast_to(np.arange(P), facet.shape)
+        g = self._normals[piece, facet]  # (N, P, 3)
+        foot = q[:, None, :] - d[..., None] * g
+        in_facet = np.all(np.einsum("npej,npj->npe", self._edge_normals[piece, facet], foot)
+                          <= self._edge_offsets[piece, facet], axis=2)
         exact = in_facet | (d <= 0.0)
         if not exact.all():
-            # The closest point of the maximising facet's edges, checked against every vertex.
-            k = np.flatnonzero(~exact)
-            f = facet[k]
-            qk = q[k]
-            w = qk[:, None, :] - self._triangles[f]  # (K, 3 edges, 3)
-            t = np.clip(np.einsum("kej,kej->ke", w, self._edges[f]) / self._edge_lengths_sq[f], 0.0, 1.0)
-            offset = w - t[..., None] * self._edges[f]  # from the edge's closest point to q
-            dist_sq = np.einsum("kej,kej->ke", offset, offset)
-            e = np.argmin(dist_sq, axis=1)
-            g = offset[np.arange(len(k)), e]  # q − x
-            x = qk - g
-            lengths = np.sqrt(dist_sq[np.arange(len(k)), e])
-            worst = np.max(self._vertices @ g.T - np.einsum("kj,kj->k", x, g), axis=0)
-            ok = worst <= self._tolerance * lengths
-            ok_k = k[ok]
-            d[ok_k] = lengths[ok]
-            n[ok_k] = g[ok] / lengths[ok][:, None]
-            exact[ok_k] = True
-        return d, n @ self._R_OP.T, exact
+            # Squared distances to every vertex, |q|² − 2 q·v + |v|²: the nearest vertex of a piece
+            # bounds the piece's distance from above (and is fallback 2's candidate).
+            vertex_dist_sq = ((q @ self._vertex_rows.T) * -2.0 + self._vertex_sq).reshape(N, P, -1)
+            vertex_dist_sq += np.einsum("nj,nj->n", q, q)[:, None, None]
+            nearest = np.argmin(vertex_dist_sq, axis=2)  # (N, P)
+            upper = np.sqrt(np.maximum(vertex_dist_sq.min(axis=(1, 2)), 0.0))  # (N,)
+            for fallback in (self._edge_fallback, self._vertex_fallback, self._visible_facets_fallback):
+                # Only pieces that may be the closest need the exact distance: not those whose lower
+                # bound is at least the smallest exact distance, or above a piece's upper bound.
+                best_exact = np.where(exact, d, np.inf).min(axis=1)
+                hopeless = ~exact & ((d >= best_exact[:, None]) | (d > upper[:, None]))
+                d[hopeless] = np.inf
+                exact |= hopeless
+                if exact.all():
+                    break
+                fallback(q, s, facet, nearest, ~exact, d, g, exact)
+        closest = np.argmin(d, axis=1)
+        rows = np.arange(N)
+        return d[rows, closest], g[rows, closest]
+
+    def _vertex_fallback(self, q, s, facet, nearest, todo, d, g, exact) -> None:
+        """Fallback 2, in place: the piece's nearest vertex v, where it passes the optimality test."""
+        n_k, p_k = np.nonzero(todo)
+        vertices = self._vertices[p_k]  # (K, V, 3)
+        v = vertices[np.arange(len(n_k)), nearest[n_k, p_k]]
+        offset = q[n_k] - v
+        lengths = np.sqrt(np.einsum("kj,kj->k", offset, offset))
+        worst = np.einsum("kvj,kj->kv", vertices, offset).max(axis=1) - np.einsum("kj,kj->k", v, offset)
+        ok = (worst <= self._tolerance * lengths) & (lengths > _TINY)
+        n_k, p_k = n_k[ok], p_k[ok]
+        d[n_k, p_k] = lengths[ok]
+        g[n_k, p_k] = offset[ok] / lengths[ok][:, None]
+        exact[n_k, p_k] = True
+
+    def _edge_fallback(self, q, s, facet, nearest, todo, d, g, exact) -> None:
+        """Fallback 1, in place: the closest point x of the maximising facet's boundary, where it
+        passes the optimality test against every vertex of the piece."""
+        n_k, p_k = np.nonzero(todo)
+        f_k = facet[n_k, p_k]
+        qk = q[n_k]
+        triangles, edges = self._triangles[p_k, f_k], self._edges[p_k, f_k]
+        lengths_sq = self._edge_lengths_sq[p_k, f_k]
+        w = qk[:, None, :] - triangles  # (K, 3 edges, 3)
+        t = np.clip(np.einsum("kej,kej->ke", w, edges) / lengths_sq, 0.0, 1.0)
+        offset = w - t[..., None] * edges  # from each edge's closest point to q
+        dist_sq = np.einsum("kej,kej->ke", offset, offset)
+        e = np.argmin(dist_sq, axis=1)
+        k = np.arange(len(n_k))
+        v = offset[k, e]  # q − x
+        x = qk - v
+        lengths = np.sqrt(dist_sq[k, e])
+        worst = np.einsum("kvj,kj->kv", self._vertices[p_k], v).max(axis=1) - np.einsum("kj,kj->k", x, v)
+        ok = worst <= self._tolerance * lengths
+        n_k, p_k = n_k[ok], p_k[ok]
+        d[n_k, p_k] = lengths[ok]
+        g[n_k, p_k] = v[ok] / lengths[ok][:, None]
+        exact[n_k, p_k] = True
+
+    def _visible_facets_fallback(self, q, s, facet, nearest, todo, d, g, exact) -> None:
+        """Fallback 3, in place: the closest of the closest points of the facets visible from q."""
+        n_k, p_k = np.nonzero(todo)
+        # A facet whose bounding sphere is farther than the piece's nearest vertex cannot hold the
+        # closest point.
+        upper = np.linalg.norm(q[n_k] - self._vertices[p_k, nearest[n_k, p_k]], axis=1)
+        to_centres = np.linalg.norm(q[n_k, None, :] - self._facet_centres[p_k], axis=2)  # (K, F)
+        pair, f = np.nonzero((s[n_k, p_k] > 0.0) & (to_centres - self._facet_radii[p_k] <= upper[:, None]))
+        closest = trimesh.triangles.closest_point(self._triangles[p_k[pair], f], q[n_k[pair]])
+        v = q[n_k[pair]] - closest
+        dist = np.linalg.norm(v, axis=1)
+        best = np.full(len(n_k), np.inf)
+        np.minimum.at(best, pair, dist)
+        winner = np.flatnonzero(dist == best[pair])
+        winner = winner[np.unique(pair[winner], return_index=True)[1]]  # one facet per pair
+        d[n_k, p_k] = best
+        g[n_k[pair[winner]], p_k[pair[winner]]] = v[winner] / np.maximum(dist[winner], _TINY)[:, None]
+        exact[n_k, p_k] = True
 
 
 _DISTANCE = {"sphere": _sphere, "box": _box, "cylinder": _cylinder, "capsule": _capsule}

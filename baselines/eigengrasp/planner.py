@@ -1,6 +1,6 @@
 """GraspIt!'s Eigengrasp planner: annealing over hand pose and posture, then autograsp and ε.
 
-The loop (src/EGPlanner/simAnnPlanner.cpp, simAnn.cpp, egPlanner.cpp; DESIGN.md §7):
+The loop (src/EGPlanner/simAnnPlanner.cpp, simAnn.cpp, egPlanner.cpp; docs/design.md §4.6):
 
 1. Start from the reset state (palm 350 mm along the object's z, hand open) with energy 1e8.
 2. At step k, draw a neighbour of the current state at temperature T(k) (annealing.py); if the hand
@@ -39,7 +39,7 @@ from drake_grasp.objects import ObjectSpec
 from drake_grasp.quality import friction_cone_edges, grasp_quality
 from drake_grasp.quasistatic import Contact, QuasiStaticHand
 
-NUM_PLANNED_GRASPS = 3  # the paper executes the three best grasps (DESIGN §1, §7).
+NUM_PLANNED_GRASPS = 3  # the paper executes the three best grasps (its Sec. 6; docs/design.md §4.6).
 # Stop annealing when this many iterations in a row found no legal neighbour (GraspIt! has no
 # such guard and would spin; it never triggers in practice, as a legal state has legal neighbours).
 MAX_CONSECUTIVE_FAILURES = 10_000
@@ -56,7 +56,7 @@ class PlannedGrasp:
         pregrasp_joint_angles: (8,) joint angles of the planned posture, controller order, rad.
         joint_angles: (8,) joint angles after autograsp, rad.
         energy: The state's annealing energy (GraspIt!'s units: mm for ``contact``).
-        epsilon: ε of the grasp after autograsp (dimensionless, DESIGN §6).
+        epsilon: ε of the grasp after autograsp (dimensionless, docs/design.md §4.5).
         volume: Volume of its grasp wrench space (dimensionless).
         contacts: The hand's contacts after autograsp.
         step: The step counter k at which the state was found.

@@ -7,12 +7,11 @@ O is the world frame. Per annealing step the planner:
 1. sets the hand base pose X_OH and the 8 joint angles with one ``MultibodyPlant.SetPositions``;
 2. asks SceneGraph whether any hand link penetrates the object (``QueryObject.HasCollisions``, one
    call; collisions inside the hand are filtered, as in the dynamic model);
-3. gets the distance from each virtual contact to the object: in numpy for analytic pieces and,
-   where the closest point lies in a facet, for convex mesh pieces (object_distance.py); for the
-   rest (convex pieces whose closest point is on an edge or vertex, ellipsoids) by Drake's exact
-   pair query between the piece and a zero-radius sphere registered at the contact on its link.
+3. gets the distance from each virtual contact to the object: in numpy for analytic pieces and
+   convex mesh pieces (object_distance.py); for ellipsoids by Drake's exact pair query between the
+   piece and a zero-radius sphere registered at the contact on its link.
 
-The zero-radius spheres are only added when the object has such pieces; they also take part in
+The zero-radius spheres are only added when the object has ellipsoids; they also take part in
 ``HasCollisions``, which changes nothing: a contact sits on its link's surface, so it penetrates
 the object only when its link does.
 """
@@ -27,7 +26,7 @@ from pydrake.multibody.parsing import Parser
 from pydrake.multibody.plant import AddMultibodyPlantSceneGraph
 from pydrake.systems.framework import DiagramBuilder
 
-from baselines.eigengrasp.object_distance import ConvexDistance, PrimitiveDistance
+from baselines.eigengrasp.object_distance import ConvexPiecesDistance, PrimitiveDistance
 from baselines.eigengrasp.virtual_contacts import VIRTUAL_CONTACTS
 from drake_grasp import hand
 from drake_grasp.contact import ContactParameters
@@ -63,12 +62,12 @@ class HandObjectScene:
         object_geometries = plant.GetCollisionGeometriesForBody(object_body)
         # objects.object_sdf names piece i's collision "collision_{i}".
         piece_of = {g: spec.pieces[int(inspector.GetName(g).rsplit("_", 1)[1])] for g in object_geometries}
-        self._drake_pieces = [g for g in object_geometries
-                              if not isinstance(inspector.GetShape(g), _ANALYTIC_SHAPES)]
-        # Convex pieces: numpy where exact, Drake elsewhere; other pieces (ellipsoids): Drake.
-        self._convex_pieces = [(g, ConvexDistance(piece_of[g])) for g in self._drake_pieces
-                               if piece_of[g].kind == "convex"]
-        self._other_pieces = [g for g in self._drake_pieces if piece_of[g].kind != "convex"]
+        numeric = [g for g in object_geometries if isinstance(inspector.GetShape(g), _ANALYTIC_SHAPES)
+                   or piece_of[g].kind == "convex"]
+        convex = [piece_of[g] for g in object_geometries if piece_of[g].kind == "convex"]
+        self._convex_distance = ConvexPiecesDistance(convex) if convex else None
+        # The rest (ellipsoids): Drake's pair queries.
+        self._drake_pieces = [g for g in object_geometries if g not in numeric]
         self._contact_geometries = []
         if self._drake_pieces:
             for i, c in enumerate(VIRTUAL_CONTACTS):
@@ -140,20 +139,17 @@ class HandObjectScene:
             distance at each contact: the direction from the closest object point to the contact).
         """
         distance, gradient = self._primitive_distance(points_O)
+        if self._convex_distance is not None:
+            d, g = self._convex_distance(points_O)
+            closer = d < distance
+            distance = np.where(closer, d, distance)
+            gradient = np.where(closer[:, None], g, gradient)
         if not self._drake_pieces:
             return distance, gradient
         distance, gradient = distance.copy(), gradient.copy()
         query = self._query_port.Eval(self._sg_context)
         pair_query = query.ComputeSignedDistancePairClosestPoints
-        for piece_id, convex in self._convex_pieces:
-            d, g, exact = convex(points_O)
-            closer = d < distance  # d is exact or a lower bound: where it is not below, skip
-            take = closer & exact
-            distance[take] = d[take]
-            gradient[take] = g[take]
-            for i in np.flatnonzero(closer & ~exact):
-                self._pair_distance(pair_query, i, piece_id, distance, gradient)
-        for piece_id in self._other_pieces:
+        for piece_id in self._drake_pieces:
             for i in range(len(points_O)):
                 self._pair_distance(pair_query, i, piece_id, distance, gradient)
         return distance, gradient

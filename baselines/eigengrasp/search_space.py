@@ -1,7 +1,7 @@
 """The planner's search space: hand pose in axis-angle form relative to the object, plus posture.
 
 GraspIt!'s default "Axis-angle" space (src/EGPlanner/searchStateImpl.cpp, ``PositionStateAA``;
-DESIGN.md §7) places the hand's *approach frame* relative to the object with 6 variables: a
+docs/design.md §4.6) places the hand's *approach frame* relative to the object with 6 variables: a
 translation (Tx, Ty, Tz) and a rotation by α about the axis (sin θ cos φ, sin θ sin φ, cos θ). With
 the Barrett's two eigengrasp amplitudes that makes the 8 variables annealed. The Barrett's approach
 frame is its palm frame (GraspIt!'s Barrett.xml: approach direction +z from the palm origin, which
@@ -51,7 +51,7 @@ class SearchVariable:
         return self.upper - self.lower
 
 
-# --- DESIGN §7 (searchStateImpl.cpp PositionStateAA, mm and rad; PostureStateEigen). ------------
+# --- docs/design.md §4.6 (searchStateImpl.cpp PositionStateAA, mm and rad; PostureStateEigen). ----
 TRANSLATION_XY_RANGE_MM = (-250.0, 250.0)
 TRANSLATION_Z_RANGE_MM = (-250.0, 350.0)
 TRANSLATION_MAX_JUMP_MM = 150.0
@@ -73,7 +73,7 @@ MAX_JUMP = np.array([v.max_jump for v in SEARCH_VARIABLES])
 CIRCULAR = np.array([v.circular for v in SEARCH_VARIABLES])
 TX, TY, TZ, THETA, PHI, ALPHA, EG0, EG1 = range(NUM_VARIABLES)
 
-# Reset state (DESIGN §7): the palm 350 mm along the object's z, α = π/2 (θ = φ = 0: about the
+# Reset state (docs/design.md §4.6): the palm 350 mm along the object's z, α = π/2 (θ = φ = 0: about the
 # object's z), amplitudes at −4 (hand open).
 RESET_TZ_MM = 350.0
 RESET_STATE = np.array([0.0, 0.0, RESET_TZ_MM * M_PER_MM, 0.0, 0.0, math.pi / 2.0,
@@ -82,7 +82,7 @@ RESET_STATE = np.array([0.0, 0.0, RESET_TZ_MM * M_PER_MM, 0.0, 0.0, math.pi / 2.
 X_PH = RigidTransform([0.0, 0.0, -hand.PALM_HEIGHT])
 """Pose of the hand base H in the palm (approach) frame P."""
 
-# --- DESIGN §7 (searchState.cpp HandObjectState::distance, simAnnPlanner.cpp). --------------------
+# --- docs/design.md §4.6 (searchState.cpp HandObjectState::distance, simAnnPlanner.cpp). ----------
 ANGLE_DISTANCE_WEIGHT = 0.5  # GraspIt!: "0.5 weight out of thin air".
 
 

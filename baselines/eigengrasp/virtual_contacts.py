@@ -1,6 +1,6 @@
 """The 19 virtual contacts of the BarrettHand, and where they are for a finger posture.
 
-GraspIt!'s contact energy (DESIGN.md §7) measures how well a set of *virtual contacts* on the hand,
+GraspIt!'s contact energy (docs/design.md §4.6) measures how well a set of *virtual contacts* on the hand,
 each a point with an outward normal, lies on the object. The Barrett's set
 (models/robots/Barrett/virtual/all_16_contacts.xml) has 19: 4 on the palm, 2 on each of the 6 finger
 links, 1 on each fingertip; links and palm carry friction 0.2, fingertips 1.0 (its ``sCof``). We

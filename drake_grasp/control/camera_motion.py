@@ -32,7 +32,7 @@ from drake_grasp import arm
 
 @dataclasses.dataclass
 class CameraMotionParams:
-    """Choices of the camera motion controller (diagrams/perception.scenarios.yaml).
+    """Choices of the camera motion controller (the scenario's `perception:`, diagrams/station.scenarios.yaml).
 
     Attributes:
         time_step: integration step of the differential IK, s.

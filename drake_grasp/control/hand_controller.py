@@ -8,7 +8,7 @@ object or its 48 deg limit. If the distal link is stopped first, the motor stall
 stops. A stopped finger keeps squeezing with its stall torque. Reopening re-engages the clutch.
 Spread (F1 and F2, one motor) goes to the compliance mode's angle before the fingers close.
 
-How it is simulated (DESIGN.md §10): every finger joint has an implicit PD actuator in the plant
+How it is simulated (docs/design.md §5.3): every finger joint has an implicit PD actuator in the plant
 (stable at large gains and time steps); this controller turns the motor model into the desired joint
 states those actuators track. Torque close is a *position lead*: a joint's command runs ahead of where
 the joint will be at the next step (its measured angle plus its measured closing velocity times the
@@ -45,7 +45,7 @@ class HandControllerParams:
         proximal_drive_torque: largest torque the motor puts on a blocked proximal joint before
             breakaway, N*m. Must exceed `breakaway_torque`, or the clutch could never slip.
         distal_squeeze_torque: torque of a stalled distal joint, N*m; 0.75 N*m is a 15 N fingertip
-            force at A3 = 50 mm (DESIGN.md §3: 15-25 N, assumed).
+            force at A3 = 50 mm (docs/design.md §4.1: 15-25 N, assumed).
         spread_torque: stall torque of the spread drive, N*m (assumed).
         closing_time: time for a free proximal joint to go from open to its 140 deg limit, s.
         spread_time: time for the spread to go end to end (180 deg), s.

@@ -46,8 +46,8 @@ class Fig4Config:
     Attributes:
         sizes: object sizes, from a few cm to past the hand's envelope (~0.30 m).
         errors: hand position errors, applied along x and along y.
-        friction: μ of the ε metric (DESIGN.md §5: 0.5).
-        num_edges: friction-cone edges of the ε metric (DESIGN.md §6: 8).
+        friction: μ of the ε metric (docs/design.md §4.4: 0.5).
+        num_edges: friction-cone edges of the ε metric (docs/design.md §4.5: 8).
         start_clearance: the palm starts this far from the object's top before the approach, m.
     """
 

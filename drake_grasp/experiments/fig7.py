@@ -142,7 +142,7 @@ def reachable_grasps(plan: dict, obj: str, scenario_file: str = "", scenario_nam
                      count: int = 3) -> list[dict]:
     """The `count` best of the plan's ranked candidates that the WAM can execute.
 
-    The planner moves a free hand (DESIGN.md §7) and knows nothing of the arm: some of its best
+    The planner moves a free hand (docs/design.md §4.6) and knows nothing of the arm: some of its best
     grasps come from beyond the object, where the WAM cannot take the hand. As a user of GraspIt!
     would, we execute the best grasps the arm can reach: pre-grasp and grasp poses solvable by
     inverse kinematics with the object at its nominal pose. Each returned grasp dict gets its rank in

@@ -97,11 +97,10 @@ def scenario_fingerprint(scenario_file: str = "", scenario_name: str = "default"
     """The fingerprint of the scenario a trial runs in, after the file's overrides of the default
     scenario, with the perception configuration the camera-driven trials use. Reads the files each time (a sweep calls it once
     per scenario, before its trials run)."""
-    from drake_grasp.perception import load_perception_config
     from drake_grasp.station import DEFAULT_SCENARIO_FILE, load_scenario
 
     scenario = load_scenario(scenario_file or DEFAULT_SCENARIO_FILE, scenario_name)
-    return digest(scenario_text(scenario), scenario_text(load_perception_config()))
+    return digest(scenario_text(scenario))
 
 
 def trial_fingerprint(spec, scenario_print: str | None = None, object_print: str | None = None) -> str:

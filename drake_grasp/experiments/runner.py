@@ -104,7 +104,9 @@ def _run_one(spec: TrialSpec, replay_html: str | None = None) -> dict:
         record = run_compliant_trial(scenario, obj, seed=spec.seed, grasp=spec.grasp or None,
                                      replay_html=replay_html)
         return _row(spec, record, {"resemblance": record.resemblances, "chosen": record.chosen_grasp,
-                                   "estimate_errors": record.estimate_errors})
+                                   "estimate_errors": record.estimate_errors,
+                                   "scenario": spec.scenario_name,
+                                   "segmentation": scenario.perception.segmentation.method})
     if spec.method == "oracle":
         def plan(X_WO, object_spec):
             return plan_compliant_grasp(spec.grasp, oracle_estimate(X_WO, object_spec))

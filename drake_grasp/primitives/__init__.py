@@ -1,4 +1,4 @@
-"""The visual primitives (paper Sec. 4; DESIGN §1): active vision with the eye-in-hand camera.
+"""The visual primitives (paper Sec. 4; docs/design.md §2): active vision with the eye-in-hand camera.
 
 LeafSystems (each with declared, named ports; see `drake_grasp.perception` for the wiring):
 

@@ -1,6 +1,6 @@
 """The depth primitive: keep the object centred while circling it; the image drift gives the depth.
 
-Behaviour (DESIGN §1, paper Sec. 4), per command:
+Behaviour (docs/design.md §2, paper Sec. 4), per command:
 
 * TRACK: a proportional servo turns the camera so that the silhouette's centroid stays at the image
   centre (rotation about the camera's own origin).
@@ -48,7 +48,7 @@ from drake_grasp.primitives.silhouette import CameraSample
 
 @dataclasses.dataclass
 class DepthParams:
-    """Choices of the depth primitive (diagrams/perception.scenarios.yaml).
+    """Choices of the depth primitive (the scenario's `perception:`, diagrams/station.scenarios.yaml).
 
     Attributes:
         centring_gain: rad/s of camera rotation per rad of centroid offset.

@@ -1,6 +1,6 @@
 """The principal-axis primitive: align the blob's axis with the image border, then arc about it.
 
-Behaviour (DESIGN §1, paper Sec. 4), per command:
+Behaviour (docs/design.md §2, paper Sec. 4), per command:
 
 * TRACK (and APPROACH): a servo rolls the camera about its optical axis so that the blob's principal
   axis (second-order central moments) lies along the image's u axis (the long border). It acts only
@@ -38,7 +38,7 @@ from drake_grasp.primitives.silhouette import CameraSample
 
 @dataclasses.dataclass
 class PrincipalAxisParams:
-    """Choices of the principal-axis primitive (diagrams/perception.scenarios.yaml).
+    """Choices of the principal-axis primitive (the scenario's `perception:`, diagrams/station.scenarios.yaml).
 
     Attributes:
         roll_gain: rad/s of roll per rad of blob-axis angle.

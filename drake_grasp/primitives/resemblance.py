@@ -37,7 +37,7 @@ ARC_AXES = ("axis", "cross", "none")
 
 @dataclasses.dataclass
 class ResemblanceParams:
-    """Choices of one resemblance primitive (diagrams/perception.scenarios.yaml).
+    """Choices of one resemblance primitive (the scenario's `perception:`, diagrams/station.scenarios.yaml).
 
     Attributes:
         arc_about: "axis" (rotate about the principal axis a), "cross" (about b) or "none".

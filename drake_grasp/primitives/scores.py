@@ -1,7 +1,8 @@
 """Shape resemblance from how two silhouette features vary over the camera's motion (pure numpy).
 
-The paper's rule (DESIGN §1): constant contour area and eccentricity ≈ 1 → sphere; constant area and
-eccentricity ≫ 1 → cylinder (rotationally symmetric about its principal axis); varying area → box.
+The paper's rule (Sec. 4; docs/design.md §2): constant contour area and eccentricity ≈ 1 → sphere;
+constant area and eccentricity ≫ 1 → cylinder (rotationally symmetric about its principal axis);
+varying area → box.
 "Constant" only means something for a given motion, so the features are modelled as functions of
 where the camera is on its sphere around the object centre: φa = rotation about the object's axis a
 (the cylinder primitive's arc), φb = rotation about the cross axis b (the sphere primitive's arc),
@@ -26,7 +27,7 @@ asymmetric view φ.
 * box = 1 − max(I_a, R · I_b): no invariance about the principal axis (the paper asks for
   eccentricity ≫ 1 too; we drop that so that cubes, square from above, are boxes: choice).
 
-All three lie in [0, 1]. τ_V and τ_e are choices (diagrams/perception.scenarios.yaml).
+All three lie in [0, 1]. τ_V and τ_e are choices (the scenario's `perception:`, diagrams/station.scenarios.yaml).
 """
 
 import dataclasses

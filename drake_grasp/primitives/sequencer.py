@@ -8,7 +8,7 @@ Phases (an Enum in abstract state, advanced by a periodic unrestricted update at
     DONE        everything OFF (the camera stops; the estimates are held).
     NOT_FOUND   the object was never in view during APPROACH: everything OFF.
 
-The phases last fixed times (diagrams/perception.scenarios.yaml): a choice for determinism and a
+The phases last fixed times (the scenario's `perception:`, diagrams/station.scenarios.yaml): a choice for determinism and a
 bounded run time; the primitives' estimates settle well within them. A grasp supervisor can drive
 the same primitives through their `command` ports instead of this sequencer.
 """
@@ -49,7 +49,7 @@ _COMMANDS = {
 
 @dataclasses.dataclass
 class SequencerParams:
-    """ExplorationPhase durations, s (diagrams/perception.scenarios.yaml)."""
+    """ExplorationPhase durations, s (the scenario's `perception:`, diagrams/station.scenarios.yaml)."""
 
     approach_time: float = 1.5
     depth_axis_time: float = 4.0

@@ -1,7 +1,7 @@
 """Image moments of a blob: the silhouette features the visual primitives use.
 
 From a boolean mask (the object's silhouette, see `segmentation`) this module computes the features
-named in DESIGN.md §1: **contour area**, centroid, **principal axis** (orientation of the blob from its
+named in docs/design.md §2: **contour area**, centroid, **principal axis** (orientation of the blob from its
 second-order central moments) and **eccentricity** (ratio of major to minor axis of the blob's
 second moments, ≥ 1).
 

@@ -1,6 +1,6 @@
 """Segmentation: from a camera image to the object's mask (the silhouette the visual primitives use).
 
-Two sources of a mask, as in DESIGN.md §10:
+Two sources of a mask, (docs/design.md §5.4):
 
 - the **label image** (default): Drake's RgbdSensor renders, for every pixel, the render label of the
   geometry seen there. MultibodyPlant labels a geometry with the index of its body, so the object's
