@@ -1,8 +1,11 @@
-"""The whole paper in one command: Fig. 4, Fig. 6 and Fig. 7, and a report of claim against result.
+"""The whole paper in one command: Fig. 4, Fig. 6 and Fig. 7, a report of claim against result, and
+beyond the paper, both methods on novel objects.
 
 `run` runs (or resumes) the three experiments into one output folder and writes ``report.md``: for each
 claim of the paper, the paper's number or statement, ours, and whether ours agrees. The verdicts are
 computed from the measured results with the rules stated beside each claim; nothing is tuned to agree.
+The same text is also written as ``report.html``, the results page (`report_page`): figures inline, and
+one Meshcat replay per object and method (`replays`), all of it openable offline in a browser.
 """
 
 import dataclasses
@@ -12,7 +15,9 @@ import time
 
 import numpy as np
 
-from drake_grasp.experiments import fig4, fig6, fig7
+from drake_grasp.experiments import fig4, fig6, fig7, novel
+from drake_grasp.experiments.replays import ensure_replays
+from drake_grasp.experiments.report_page import write_report_html
 from drake_grasp.experiments.results import write_atomically
 
 # Written by scripts/bench_scaling.py; quoted in the report when present.
@@ -151,7 +156,7 @@ def scaling_lines(path: pathlib.Path = SCALING_FILE) -> list[str]:
 
 def write_report(path: pathlib.Path, claims: list[Claim], wall_time: float, quick: bool, energy: str,
                  figures: list[pathlib.Path], resumed: dict | None = None, executor: str = "local",
-                 scaling_file: pathlib.Path = SCALING_FILE) -> None:
+                 scaling_file: pathlib.Path = SCALING_FILE, novel_lines: list[str] | None = None) -> None:
     agree = sum(c.agrees == "yes" for c in claims)
     reuse = ""
     if resumed:
@@ -169,6 +174,11 @@ def write_report(path: pathlib.Path, claims: list[Claim], wall_time: float, quic
     lines += ["", "Figures: " + ", ".join(f"[{p.name}]({p.parent.name}/{p.name})" for p in figures), ""]
     if quick:
         lines += ["A quick run uses few sizes, objects and trials: its verdicts are indicative only.", ""]
+    if novel_lines:
+        lines += ["## Beyond the paper: novel objects", "",
+                  "Both methods on generated objects neither has seen (`drake-grasp novel`; details in "
+                  "[novel/summary.md](novel/summary.md)), through the runner, seeds and success test of Fig. 6 "
+                  "and Fig. 7.", "", *novel_lines, ""]
     lines += scaling_lines(scaling_file)
     write_atomically(path, "\n".join(lines))
 
@@ -209,11 +219,33 @@ def _run(out_dir, quick, workers, seed, energy, executor):
     comparison, f7, _ = fig7.run_comparison(config7, out_dir / "fig7", out_dir / "fig6", executor=executor)
     figures += f7
     claims = fig4_claims(summaries4) + fig6_claims(stats6) + fig7_claims(comparison)
+    novel_config = novel.NovelConfig.quick(seed=seed, energy=energy) if quick else novel.NovelConfig(
+        seed=seed, energy=energy)
+    novel_objects = novel.ensure_objects(out_dir / "novel" / "objects", novel_config.count, novel_config.object_seed)
+    _, novel_figures, novel_lines = novel.run_study(novel_config, out_dir / "novel", novel_objects, executor)
+    figures += novel_figures
     wall = time.perf_counter() - start
     report = out_dir / "report.md"
     write_report(report, claims, wall, quick, energy, figures, {k: f"{v} rows" for k, v in resumed.items() if v},
-                 executor.describe())
+                 executor.describe(), novel_lines=novel_lines)
+    replays = ensure_replays(out_dir / "replays", replay_specs(config6, config7, out_dir / "fig7", executor),
+                             executor)
+    write_report_html(out_dir / "report.html", report.read_text(), replays)
     return report, claims, wall
+
+
+def replay_specs(config6, config7, fig7_dir: pathlib.Path, executor) -> list:
+    """One trial per object and method for the results page (the first trial's seed): the
+    compliance-centric algorithm's own choice on each Fig. 6 object, the planner's best reachable
+    grasp on each Fig. 7 object."""
+    from drake_grasp.experiments.runner import TrialSpec
+
+    specs = [TrialSpec(obj, "compliant", "", config6.seed) for obj in config6.objects]
+    plans = fig7.ensure_plans(fig7_dir, config7, executor)  # read back: planned by the comparison
+    first = {}
+    for spec in fig7.eigengrasp_specs(plans, config7):
+        first.setdefault(spec.object, spec)
+    return specs + list(first.values())
 
 
 def _rows_on_disk(csv_path: pathlib.Path) -> int:

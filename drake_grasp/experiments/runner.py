@@ -67,7 +67,8 @@ class TrialSpec:
         object: catalogue name, primitive or mesh path.
         method: "oracle" (compliant grasp from ground truth), "compliant" (from the camera), or
             "eigengrasp" (a planned grasp, given in `planned`).
-        grasp: "spherical" | "cylindrical" | "box" for compliant methods; a label for planned grasps.
+        grasp: "spherical" | "cylindrical" | "box" for compliant methods ("" with "compliant": the
+            algorithm's own choice); a label for planned grasps.
         seed: the trial's seed (its variation; shared by every method).
         scenario_file, scenario_name: the station scenario.
         planned: for planned grasps: {"X_OH": 4x4 list, "joint_angles": 8 floats}.
@@ -91,15 +92,16 @@ class TrialSpec:
         return mesh_options(self.scale, self.largest_component)
 
 
-def run_one(spec: TrialSpec) -> dict:
-    """Runs one trial in this process; returns its record as a dict of CSV-ready values."""
+def run_one(spec: TrialSpec, replay_html: str | None = None) -> dict:
+    """Runs one trial in this process; returns its record as a dict of CSV-ready values. With
+    `replay_html`, the trial also writes a Meshcat replay there (the record is the same)."""
     from drake_grasp.objects import pose_warnings_announced
 
     with pose_warnings_announced():
-        return _run_one(spec)
+        return _run_one(spec, replay_html)
 
 
-def _run_one(spec: TrialSpec) -> dict:
+def _run_one(spec: TrialSpec, replay_html: str | None = None) -> dict:
     from drake_grasp.grasps import oracle_estimate, plan_compliant_grasp, planned_grasp
     from drake_grasp.objects import resolve_user_object
     from drake_grasp.station import DEFAULT_SCENARIO_FILE, load_scenario
@@ -108,7 +110,9 @@ def _run_one(spec: TrialSpec) -> dict:
     scenario = load_scenario(spec.scenario_file or DEFAULT_SCENARIO_FILE, spec.scenario_name)
     obj = resolve_user_object(spec.object, **spec.object_options())
     if spec.method == "compliant":
-        record = run_compliant_trial(scenario, obj, seed=spec.seed, grasp=spec.grasp)
+        # An empty grasp runs the algorithm's own choice; a named one is forced (Fig. 6's protocol).
+        record = run_compliant_trial(scenario, obj, seed=spec.seed, grasp=spec.grasp or None,
+                                     replay_html=replay_html)
         return _row(spec, record, {"resemblance": record.resemblances, "chosen": record.chosen_grasp,
                                    "estimate_errors": record.estimate_errors,
                                    "scenario": spec.scenario_name,
@@ -131,7 +135,8 @@ def _run_one(spec: TrialSpec) -> dict:
         extra = dict(spec.planned)
     else:
         raise ValueError(f"unknown method '{spec.method}'")
-    record = run_trial(scenario, obj, plan, seed=spec.seed, method=spec.method, grasp=spec.grasp)
+    record = run_trial(scenario, obj, plan, seed=spec.seed, method=spec.method, grasp=spec.grasp,
+                       replay_html=replay_html)
     return _row(spec, record, extra)
 
 
