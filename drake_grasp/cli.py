@@ -237,9 +237,7 @@ def _run_objects_generate(args) -> int:
     _check_seed(args.seed)
     if args.count < 1:
         raise UsageError(f"--count must be >= 1, got {args.count}")
-    out = pathlib.Path(args.out)
-    if out.exists() and not out.is_dir():
-        raise UsageError(f"--out {args.out}: not a directory")
+    out = _check_out_dir(args.out)
     rows = novel.generate(args.count, args.seed, out)
     if args.json:
         print(json.dumps({"out": str(out), "objects": rows}))
@@ -659,7 +657,7 @@ def _run_novel(args) -> int:
     overrides = {k: v for k, v in (("count", args.count), ("trials", args.trials)) if v is not None}
     overrides.update(seed=args.seed, object_seed=args.object_seed, energy=args.energy)
     config = novel.NovelConfig.quick(**overrides) if args.quick else novel.NovelConfig(**overrides)
-    out = pathlib.Path(args.out or (args.out_default + ("-quick" if args.quick else "")))
+    out = _check_out_dir(args.out or (args.out_default + ("-quick" if args.quick else "")))
     start = time.perf_counter()
     with executor:
         objects = novel.ensure_objects(out / "objects", config.count, config.object_seed)

@@ -8,7 +8,6 @@ Chromium is installed (`apt-get install chromium`). Each page is screenshotted: 
 import shutil
 import subprocess
 
-import numpy as np
 import pytest
 from matplotlib.image import imread
 
