@@ -144,6 +144,7 @@ def _row(spec: TrialSpec, record, extra: dict) -> dict:
     """A record as CSV-ready values; lists and dicts as JSON."""
     row = {k: v for k, v in dataclasses.asdict(record).items() if k in TRIAL_FIELDS}
     row["object"] = spec.object  # the name the sweep asked for (a path stays a path)
+    row["grasp"] = spec.grasp  # the key asked for ("" for the algorithm's own choice: see extra.chosen)
     for key in ("finger_angles", "breakaway", "breakaway_angles", "variation"):
         row[key] = json.dumps(_finite(row[key]))
     row["extra"] = json.dumps(_finite(extra))
