@@ -27,8 +27,8 @@ def test_choice_is_the_highest_mean_resemblance_and_summary_counts_its_successes
     assert stats["soccer_ball"]["cylindrical"].successes == 1
     assert stats["game_box"]["box"].rate == pytest.approx(0.75)
     lines = fig6.summary_lines(stats)
-    assert lines[-1].startswith("chosen grasps: 87.5% (7/8)")
-    assert "95.6%" in lines[-1]
+    assert lines[-1].startswith("chosen grasps: 88 % (7/8, 95 % CI 53-98 %)")
+    assert "paper: 96 % (86/90" in lines[-1]
     paths = fig6.plot(stats, tmp_path)
     assert all(p.exists() and p.stat().st_size > 1000 for p in paths)
 

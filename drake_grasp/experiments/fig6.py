@@ -20,6 +20,7 @@ import pathlib
 import numpy as np
 
 from drake_grasp.experiments.results import axis_label, save_figure
+from drake_grasp.experiments.stats import format_rate
 
 GRASPS = ("spherical", "cylindrical", "box")
 RESEMBLANCE_OF = {"spherical": "sphere", "cylindrical": "cylinder", "box": "box"}
@@ -126,8 +127,7 @@ def summary_lines(stats: dict[str, dict[str, GraspStats]]) -> list[str]:
             total += per_grasp[choice].trials
         lines.append(f"{o}: chosen {choice or '-'}; {cells}")
     paper_ok, paper_n = PAPER_CHOSEN_SUCCESS
-    ours = f"{100 * total_ok / total:.1f}% ({total_ok}/{total})" if total else "n/a"
-    lines.append(f"chosen grasps: {ours}; paper: {100 * paper_ok / paper_n:.1f}% ({paper_ok}/{paper_n})")
+    lines.append(f"chosen grasps: {format_rate(total_ok, total)}; paper: {format_rate(paper_ok, paper_n)}")
     return lines
 
 

@@ -279,11 +279,19 @@ def summary_lines(rows: list[Comparison], energy: str, compliant_source: str) ->
     for c in rows:
         grasps = ", ".join(f"{g.split('#')[1]}: {ok}/{n}" for g, (ok, n) in sorted(c.per_grasp.items()))
         lines.append(
-            f"{c.object}: compliance-centric {_pct(c.compliant)} ({c.compliant_grasp}, {c.compliant_trials} trials); "
-            f"Eigengrasp ({energy}) average {_pct(c.eigengrasp_average)}, best {_pct(c.eigengrasp_best)} [{grasps}]")
+            f"{c.object}: compliance-centric {_rate(c.compliant, c.compliant_trials)} ({c.compliant_grasp}); "
+            f"Eigengrasp ({energy}) average {_rate(c.eigengrasp_average, c.eigengrasp_trials)}, "
+            f"best {_pct(c.eigengrasp_best)} [{grasps}]")
     lines.append(f"compliance-centric side: {compliant_source}")
     lines.append(PAPER_FINDINGS)
     return lines
+
+
+def _rate(rate: float, trials: int) -> str:
+    """A rate over `trials` with its 95 % interval (`stats.format_rate`)."""
+    from drake_grasp.experiments.stats import format_rate
+
+    return format_rate(round(rate * trials), trials) if trials and np.isfinite(rate) else "n/a"
 
 
 def _pct(x: float) -> str:

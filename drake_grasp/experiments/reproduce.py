@@ -19,6 +19,7 @@ from drake_grasp.experiments import fig4, fig6, fig7, novel
 from drake_grasp.experiments.replays import ensure_replays
 from drake_grasp.experiments.report_page import write_report_html
 from drake_grasp.experiments.results import write_atomically
+from drake_grasp.experiments.stats import format_rate
 
 # Written by scripts/bench_scaling.py; quoted in the report when present.
 SCALING_FILE = pathlib.Path(__file__).resolve().parents[2] / "docs" / "results" / "scaling.json"
@@ -76,7 +77,7 @@ def fig6_claims(stats: dict) -> list[Claim]:
             n += per_grasp[choice].trials
     if n:
         rate = ok / n
-        claims.append(Claim("Fig. 6: the chosen grasps succeed", "95.6 % (86/90)", f"{100 * rate:.1f} % ({ok}/{n})",
+        claims.append(Claim("Fig. 6: the chosen grasps succeed", format_rate(86, 90), format_rate(ok, n),
                             "yes" if abs(rate - 86 / 90) <= 0.10 else "no", "within 10 points of the paper"))
     annulus = [o for o in ANNULUS if o in stats]
     if annulus:
