@@ -13,9 +13,10 @@ object:
 
 Each measurement is repeated ``--repeats`` times and the median reported. ``--before FILE`` adds a
 previous run's JSON (e.g. of the code before a change, run with this script and ``PYTHONPATH``
-pointing at that code) as a "before" column. Writes ``--out`` (Markdown) and the same stem ``.json``.
+pointing at that code) as a "before" column; repeat it for several. Writes ``--out`` (Markdown) and the
+same stem ``.json``. With ``--no-trials`` the trial cells of this run stay empty (the previous runs' show).
 
-Run: .venv/bin/python scripts/bench_meshes.py [--steps N] [--repeats R] [--before FILE]
+Run: .venv/bin/python scripts/bench_meshes.py [--steps N] [--repeats R] [--before FILE ...]
      [--out docs/results/mesh_speed.md] [--label after]
 Not a test: the numbers depend on the machine and its load.
 """
@@ -110,18 +111,19 @@ def median_of(runs: list[dict]) -> dict:
     return out
 
 
-def markdown(rows: dict, before: dict | None, label: str, steps: int, repeats: int) -> str:
+def markdown(rows: dict, befores: list[dict], label: str, steps: int, repeats: int) -> str:
     def cell(name, key, fmt, source):
         value = (source or {}).get(name, {}).get(key)
         return "" if value is None else format(value, fmt)
 
-    cols = ([before["label"]] if before else []) + [label]
-    sources = ([before["rows"]] if before else []) + [rows]
-    runs = f"medians of {repeats} runs" + (f" ({before['repeats']} before)" if before else "")
+    cols = [b["label"] for b in befores] + [label]
+    sources = [b["rows"] for b in befores] + [rows]
+    runs = f"medians of {repeats} runs" + "".join(f"; {b['repeats']} in {b['label']}" for b in befores)
     lines = [f"# Speed on meshes ({steps} planner steps; {runs})", "",
              "Made by `scripts/bench_meshes.py` on a shared 2-core machine: wall times are inflated by other "
              "processes, CPU times much less. Meshes: the script's seeded blob and tube, at most "
-             f"{MAX_PIECES} convex pieces.", "",
+             f"{MAX_PIECES} convex pieces. Where the time goes, and what changed: "
+             "[mesh_speed_profile.md](mesh_speed_profile.md).", "",
              "## Eigengrasp planner (`contact` energy): annealing steps per CPU second (per wall second)", "",
              f"| object | pieces (vertices, {label}) | " + " | ".join(cols) + " |",
              "|---|---|" + "---|" * len(cols)]
@@ -133,12 +135,15 @@ def markdown(rows: dict, before: dict | None, label: str, steps: int, repeats: i
         lines.append(f"| {name} | {row['pieces']} | " + " | ".join(cells) + " |")
     lines += ["", "## Compliant trial (camera-driven, seed 0): CPU s (wall s), outcome", "",
               "| object | " + " | ".join(cols) + " |", "|---|" + "---|" * len(cols)]
-    for name, row in rows.items():
-        if "trial_cpu_time" not in row:
+    for name in rows:
+        if not any("trial_cpu_time" in s.get(name, {}) for s in sources):
             continue
         cells = []
         for s in sources:
             r = (s or {}).get(name, {})
+            if "trial_cpu_time" not in r:
+                cells.append("")
+                continue
             outcome = "held" if r.get("success") else (r.get("failure") or "")
             cells.append(f"{cell(name, 'trial_cpu_time', '.1f', s)} ({cell(name, 'trial_wall_time', '.1f', s)}), "
                          f"{r.get('grasp', '')} {outcome}")
@@ -154,10 +159,12 @@ def markdown(rows: dict, before: dict | None, label: str, steps: int, repeats: i
             planner.append(f"{source[name]['steps_per_cpu_second'] / statistics.mean(catalogue):.2f}")
             if source[name].get("failure") == "simulation error":
                 trial.append("n/a (simulation error)")
-            elif "trial_cpu_time" in source[name] and "bottle_case" in source:
+            elif "trial_cpu_time" in source[name] and "trial_cpu_time" in source.get("bottle_case", {}):
                 trial.append(f"{source[name]['trial_cpu_time'] / source['bottle_case']['trial_cpu_time']:.2f}")
+            else:
+                trial.append("")
         lines.append(f"| {name}: planner steps/s ÷ the catalogue objects' mean | " + " | ".join(planner) + " |")
-        if trial:
+        if any(trial):
             lines.append(f"| {name}: trial time ÷ the bottle case's | " + " | ".join(trial) + " |")
     return "\n".join(lines) + "\n"
 
@@ -167,7 +174,8 @@ def main(argv=None) -> int:
     parser.add_argument("--steps", type=int, default=40_000)
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--no-trials", action="store_true", help="time the planner only")
-    parser.add_argument("--before", metavar="FILE", help="a previous run's JSON, shown as the before column")
+    parser.add_argument("--before", metavar="FILE", action="append", default=[],
+                        help="a previous run's JSON, shown as a column before this run's (repeatable)")
     parser.add_argument("--label", default="after")
     parser.add_argument("--out", default="docs/results/mesh_speed.md")
     args = parser.parse_args(argv)
@@ -189,12 +197,12 @@ def main(argv=None) -> int:
             print(f"{name:15s} trial {row['trial_cpu_time']:6.1f} cpu-s ({row['trial_wall_time']:6.1f} s) "
                   f"{row['grasp']} {'held' if row['success'] else row['failure']}", flush=True)
         rows[name] = row
-    before = json.loads(pathlib.Path(args.before).read_text()) if args.before else None
+    befores = [json.loads(pathlib.Path(b).read_text()) for b in args.before]
     out = pathlib.Path(args.out)
     out.parent.mkdir(parents=True, exist_ok=True)
     result = {"label": args.label, "steps": args.steps, "repeats": args.repeats, "rows": rows}
     out.with_suffix(".json").write_text(json.dumps(result, indent=2) + "\n")
-    out.write_text(markdown(rows, before, args.label, args.steps, args.repeats))
+    out.write_text(markdown(rows, befores, args.label, args.steps, args.repeats))
     print(f"wrote {out} and {out.with_suffix('.json')}")
     return 0
 

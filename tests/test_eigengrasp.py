@@ -215,14 +215,21 @@ def test_convex_piece_distances_are_exact(monkeypatch):
     outside = d > 1e-4
     np.testing.assert_allclose(_brute_force_distances(pieces, points[outside] - d[outside, None] * g[outside]),
                                0.0, atol=1e-9)
-    # The last fallback (the facets visible from the point) alone, where the edge fallback is
-    # skipped: exact too (spied on to be sure it ran).
-    projections = []
-    project = trimesh.triangles.closest_point
-    monkeypatch.setattr(trimesh.triangles, "closest_point", lambda *a: projections.append(1) or project(*a))
-    monkeypatch.setattr(ConvexPiecesDistance, "_edge_fallback", lambda *a: None)
-    d2, g2 = ConvexPiecesDistance(pieces)(points)
-    assert projections
+    # Points near the surface too (within 5 mm), where edges and vertices are often the closest.
+    near = points[outside][:200] - d[outside][:200, None] * g[outside][:200] * rng.uniform(-0.5, 1.0, (200, 1))
+    near += rng.normal(scale=0.005, size=near.shape)
+    d_near, g_near = ConvexPiecesDistance(pieces)(near)
+    np.testing.assert_allclose(d_near, _brute_force_distances(pieces, near), atol=1e-9)
+    # The second stage (all visible facets) alone, where the first never accepts: exact too (spied
+    # on to be sure it ran).
+    distance = ConvexPiecesDistance(pieces)
+    distance._tolerance = -np.inf
+    stage_two = []
+    closest_of_facets = distance._closest_of_facets
+    monkeypatch.setattr(distance, "_closest_of_facets",
+                        lambda *a: stage_two.append(len(a) == 7) or closest_of_facets(*a))
+    d2, g2 = distance(points)
+    assert any(stage_two)
     np.testing.assert_allclose(d2, reference, atol=1e-9)
     np.testing.assert_allclose(g2, g, atol=1e-6)
 
