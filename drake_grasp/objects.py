@@ -1,7 +1,7 @@
 """Object catalogue: the paper's nine objects, the primitive families of Fig. 4, user meshes.
 
 Every object is an :class:`ObjectSpec`: a rigid body made of convex pieces (Drake primitives or
-convex meshes, so that contact queries are exact; DESIGN §5), a mass, and the ground truth that
+convex meshes, so that contact queries are exact; docs/design.md §4.3), a mass, and the ground truth that
 perception and the ε metric need.
 
 Conventions (all SI: metres, kilograms, radians):
@@ -60,7 +60,7 @@ from drake_grasp import piece_budget
 from drake_grasp.contact import ContactParameters, compliant_proximity_sdf
 from drake_grasp.geometry import cleaning
 
-# --- Assumed numbers (DESIGN §5: "assumed" numbers live here, named) --------------------------
+# --- Assumed numbers (docs/design.md §4.3: "assumed" numbers live here, named) --------------------
 
 # Default density (kg/m³) of primitive-family objects and of user meshes given without a mass.
 # Assumed: about the median density of the nine paper objects as sized and weighed below (sponge
@@ -213,7 +213,7 @@ class ObjectSpec:
         principal_axis: Unit vector in O of the object's long axis (its axis of least inertia) for
             elongated objects, else None.
         max_radius: Largest distance from the centre of mass to the surface (m): the torque scale
-            ρ of the ε metric (DESIGN §6).
+            ρ of the ε metric (docs/design.md §4.5).
         paper_class: The paper's SFA class: one of ``PAPER_CLASSES``, or None (primitive families,
             user objects).
         closest_primitive: 'sphere', 'cylinder' or 'box': the compliant grasp whose shape the
@@ -555,7 +555,7 @@ def _make_spec(
     )
 
 
-# --- The paper's nine objects (DESIGN §5) --------------------------------------------------------
+# --- The paper's nine objects (docs/design.md §4.3) ----------------------------------------------
 # Sizes and masses are assumed (the paper gives none); YCB analogues in brackets. Every object is
 # modelled in the pose it rests in on the table: z up, x along its longest horizontal extent.
 
@@ -736,7 +736,7 @@ _PAPER_FACTORIES: dict[str, Callable[[], ObjectSpec]] = {
 }
 
 PAPER_OBJECTS: tuple[str, ...] = tuple(_PAPER_FACTORIES)
-"""Names of the paper's nine objects, in the order of DESIGN §5's table (annulus first)."""
+"""Names of the paper's nine objects, in the order of the table in docs/design.md §4.3 (annulus first)."""
 
 
 @functools.lru_cache(maxsize=None)
@@ -745,7 +745,7 @@ def _paper_object_cached(name: str) -> ObjectSpec:
 
 
 def paper_object(name: str, *, rgba=None, friction: float | None = None) -> ObjectSpec:
-    """One of the paper's nine objects (DESIGN §5).
+    """One of the paper's nine objects (docs/design.md §4.3).
 
     Args:
         name: One of ``PAPER_OBJECTS``.
@@ -840,8 +840,8 @@ def cylinder_object(
     """A solid cylinder (Fig. 4's cylinder family) lying on its side, its axis along O's x.
 
     In its nominal pose (R_TO = I) the axis lies along the table's x, so a cylindrical grasp from
-    above closes its fingers along y, as for the cubes (DESIGN §1: "for cubes the fingers close
-    along y"); pose errors along x then run along the axis and errors along y across it.
+    above closes its fingers along y, as for the cubes (the paper's Sec. 3, Fig. 4; docs/design.md §2);
+    pose errors along x then run along the axis and errors along y across it.
 
     The length is **fixed** (``CYLINDER_FAMILY_LENGTH`` = 0.30 m) while the diameter grows:
     Fig. 4's size axis is what the fingers wrap around, the cross-section; a fixed length longer

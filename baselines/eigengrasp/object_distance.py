@@ -1,6 +1,6 @@
 """Signed distance and closest-point direction from query points to an object's primitive pieces.
 
-The contact energy (DESIGN.md §7) needs, for each of the 19 virtual contacts, the vector to the
+The contact energy (docs/design.md §4.6) needs, for each of the 19 virtual contacts, the vector to the
 closest point of the object. For the primitive pieces our objects are built of (sphere, box,
 cylinder, capsule; objects.py) the closest point has a closed form, evaluated here in numpy for
 all contacts and all pieces of a kind at once (the planner's inner loop). Convex mesh pieces are
