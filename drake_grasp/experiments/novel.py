@@ -28,7 +28,7 @@ import pathlib
 import numpy as np
 
 from drake_grasp.experiments import fig6, fig7
-from drake_grasp.experiments.results import axis_label, save_figure
+from drake_grasp.experiments.results import save_figure
 from drake_grasp.experiments.stats import format_rate, wilson_interval
 
 GOAL = 0.90  # chosen-grasp success the study aims for on novel objects (reported as measured)
@@ -194,7 +194,7 @@ def plot(rows: list[NovelRow], out_dir: pathlib.Path) -> list[pathlib.Path]:
     ax.bar(x + width, np.nan_to_num(np.array([r.planner_best for r in rows]) * 100), width, color="tab:blue",
            label="Eigengrasp best")
     ax.set_xticks(x)
-    ax.set_xticklabels([f"{axis_label(r.object)}\n[{r.object_class}]" for r in rows], fontsize=6, rotation=90)
+    ax.set_xticklabels([pathlib.Path(r.object).stem for r in rows], fontsize=7, rotation=60, ha="right")
     ax.set_ylim(0, 105)
     ax.set_ylabel("success (%)")
     ax.grid(alpha=0.3, axis="y")
