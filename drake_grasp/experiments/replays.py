@@ -18,8 +18,11 @@ from drake_grasp.experiments.results import write_atomically
 def _record_replay(spec, path: str) -> dict:
     """A worker task: runs `spec` (a runner.TrialSpec; method "compliant" runs the algorithm's own
     choice) with a replay written to `path`; returns how it ended."""
+    import logging
+
     from drake_grasp.experiments.runner import run_one
 
+    logging.getLogger("drake").setLevel(logging.WARNING)  # not Meshcat's "listening at" per replay
     row = run_one(spec, replay_html=path)
     return {"success": str(row["success"]) in ("1", "True"), "failure": row["failure"]}
 

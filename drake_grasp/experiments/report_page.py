@@ -9,10 +9,8 @@ Markdown is rendered by Python-Markdown (its `tables` extension), not by hand.
 
 import dataclasses
 import html
-import os
 import pathlib
 import re
-import tempfile
 
 import markdown
 
@@ -66,8 +64,7 @@ def report_html(markdown_text: str, replays: list[Replay], title: str = "drake-g
 
 def write_report_html(path: pathlib.Path, markdown_text: str, replays: list[Replay]) -> pathlib.Path:
     """Writes the page to `path` atomically (a reader never sees half a page); returns `path`."""
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=path.name, suffix=".tmp")
-    with os.fdopen(fd, "w") as f:
-        f.write(report_html(markdown_text, replays))
-    os.replace(tmp, path)
+    from drake_grasp.experiments.results import write_atomically
+
+    write_atomically(path, report_html(markdown_text, replays))
     return path
