@@ -167,7 +167,8 @@ def _parser() -> argparse.ArgumentParser:
         "reproduce",
         help="Fig. 4, 6 and 7 and a report of the paper's claims against ours",
         description="Runs (or resumes) the three experiments under --out and writes report.md: each claim "
-        "of the paper, its number, ours, and whether ours agrees. --quick takes a few minutes on 2 cores.",
+        "of the paper, its number, ours, and whether ours agrees; beyond the paper, both methods on novel "
+        "objects; and report.html, the results page with replays. --quick takes about 10 minutes on 2 cores.",
     )
     reproduce.add_argument("--quick", action="store_true", help="few sizes, objects and trials")
     _executor_args(reproduce)

@@ -220,8 +220,10 @@ def _run(out_dir, quick, workers, seed, energy, executor):
     comparison, f7, _ = fig7.run_comparison(config7, out_dir / "fig7", out_dir / "fig6", executor=executor)
     figures += f7
     claims = fig4_claims(summaries4) + fig6_claims(stats6) + fig7_claims(comparison)
+    # Beyond the paper: one novel object of each class in the full run (2 trials per grasp), three in
+    # the quick one; `drake-grasp novel --count N --trials K` runs a larger study on its own.
     novel_config = novel.NovelConfig.quick(seed=seed, energy=energy) if quick else novel.NovelConfig(
-        seed=seed, energy=energy)
+        count=7, trials=2, seed=seed, energy=energy)
     novel_objects = novel.ensure_objects(out_dir / "novel" / "objects", novel_config.count, novel_config.object_seed)
     _, novel_figures, novel_lines = novel.run_study(novel_config, out_dir / "novel", novel_objects, executor)
     figures += novel_figures
