@@ -24,16 +24,17 @@ def _spec(tmp_path, seed, index):
         return object_from_mesh(path)
 
 
-def _oracle(spec, grasp, seed=0):
+def _oracle(spec, grasp, seed=0, scenario=None):
     def plan(X_WO, object_spec):
         return plan_compliant_grasp(grasp, oracle_estimate(X_WO, object_spec))
 
-    return run_trial(load_scenario(), spec, plan, seed=seed, method="oracle", grasp=grasp)
+    return run_trial(scenario or load_scenario(), spec, plan, seed=seed, method="oracle", grasp=grasp)
 
 
 @pytest.mark.parametrize("seed, index", HARD)
-def test_hardest_generated_objects_simulate(tmp_path, seed, index):
-    record = _oracle(_spec(tmp_path, seed, index), "box")
+def test_hardest_generated_objects_simulate(tmp_path, seed, index, short_scenario):
+    # They crashed at t = 0: the short hold is enough to show they no longer do.
+    record = _oracle(_spec(tmp_path, seed, index), "box", scenario=short_scenario)
     assert record.failure != SIMULATION_ERROR, record.summary()
 
 
