@@ -1,0 +1,559 @@
+"""Objects a user brings: mesh files and SDF/URDF models, and the names a command line takes.
+
+A mesh is checked (finite, closed, consistently wound, not flat), made the solid it encloses (shells
+united, components checked), given its units (`--scale`, a warning for unlikely sizes), simplified if
+dense, split into clean convex pieces for contact (CoACD, cached) and rested on a stable face. Mass
+properties come from the mesh itself. `resolve_object` turns a catalogue name, a primitive string or a
+path into an `objects.ObjectSpec`.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+import os
+import re
+import shutil
+import tempfile
+import warnings
+from pathlib import Path
+
+import numpy as np
+import trimesh
+from pydrake.common.eigen_geometry import AngleAxis
+from pydrake.geometry import Box, Capsule, Convex, Cylinder, Ellipsoid, Mesh, Shape, Sphere
+from pydrake.math import RigidTransform, RollPitchYaw, RotationMatrix
+from pydrake.multibody.parsing import Parser
+from scipy.spatial import ConvexHull, QhullError
+
+from drake_grasp import piece_budget
+from drake_grasp.geometry import cleaning
+from drake_grasp.catalogue import (
+    PAPER_OBJECTS, _PAPER_FACTORIES, cube_object, cylinder_object, paper_object, sphere_object,
+)
+from drake_grasp.objects import (
+    COACD_THRESHOLD, CONVEXITY_TOLERANCE, DEFAULT_DENSITY, DEFAULT_MAX_PIECES, MAX_FACES, MeshNote,
+    ObjectError, ObjectSpec, PLAUSIBLE_EXTENTS, PRIMITIVE_NAMES, STABLE_POSE_TOLERANCE, ShapePiece,
+    UnitsWarning, UnstablePoseWarning, YELLOW_PAPER_RGBA, _cached_hull_obj, _make_spec,
+    _mass_properties_summed, _obj_text, cache_dir,
+)
+
+
+# --- User objects ---------------------------------------------------------------------------------
+
+
+def _one_line(text: str) -> str:
+    text = " ".join(str(text).split())
+    return text if len(text) <= 200 else text[:197] + "..."
+
+
+def _model_name(text: str) -> str:
+    """`text` made a valid model name (letters, digits, '_', '-'; starting with a letter)."""
+    name = re.sub(r"[^A-Za-z0-9_\-]", "_", text) or "object"
+    return name if name[0].isalpha() else "object_" + name
+
+
+def _load_checked_mesh(path: Path, label: str, scale: float) -> trimesh.Trimesh:
+    """Loads a mesh and checks it is a closed, positive-volume solid (fixing inverted winding)."""
+    if not path.exists():
+        raise ObjectError(f"{label}: file not found")
+    if not path.is_file():
+        raise ObjectError(f"{label}: not a file")
+    try:
+        mesh = trimesh.load(path, force="mesh", process=False)
+    except Exception as error:  # trimesh raises many types for unreadable files.
+        reason = _one_line(error) or type(error).__name__
+        raise ObjectError(f"{label}: cannot read mesh ({reason})") from None
+    if not isinstance(mesh, trimesh.Trimesh) or len(mesh.faces) == 0:
+        raise ObjectError(f"{label}: file contains no triangles")
+    bad = int(np.count_nonzero(~np.isfinite(mesh.vertices).all(axis=1)))
+    if bad:
+        noun = "vertex is" if bad == 1 else "vertices are"
+        raise ObjectError(f"{label}: {bad} {noun} not finite (NaN or inf)")
+    mesh.apply_scale(scale)
+    mesh.merge_vertices()
+    extents = mesh.extents
+    if not np.min(extents) > 1e-9 * max(np.max(extents), 1e-300):
+        raise ObjectError(f"{label}: mesh has zero volume (it is flat)")
+    if not mesh.is_watertight:
+        edges = trimesh.grouping.group_rows(mesh.edges_sorted, require_count=1)
+        if len(edges):
+            raise ObjectError(f"{label}: mesh is not watertight ({len(edges)} open edges)")
+        raise ObjectError(f"{label}: mesh is not watertight (edges shared by more than two faces)")
+    if not mesh.is_winding_consistent:
+        raise ObjectError(f"{label}: mesh has inconsistent face winding (normals point in and out)")
+    volume = mesh.volume
+    if abs(volume) <= 1e-9 * float(np.prod(extents)):
+        raise ObjectError(f"{label}: mesh has zero volume")
+    if volume < 0.0:
+        mesh.invert()  # Consistently inverted winding: flip it (the solid itself is well defined).
+    return mesh
+
+
+CLEANING_VERSION = 1  # part of the cache key of decompositions: bump when cleaning changes
+
+
+def _decompose(mesh: trimesh.Trimesh, key: str, max_pieces: int, label: str = "mesh") -> list[str]:
+    """Convex pieces of `mesh` as OBJ files (vertices in the mesh frame), cached under `key`.
+
+    Each piece first keeps at most `piece_budget.MAX_PIECE_VERTICES` of its vertices (a hull inside
+    it, so that contact and the planner's distances stay cheap), then is cleaned for contact
+    (:func:`drake_grasp.geometry.cleaning.clean_pieces`: no near-duplicate vertices, no sliver
+    triangles, none thinner than MIN_THICKNESS), removing at most VOLUME_TOLERANCE of the mesh's
+    volume (else ObjectError). Mass properties never come from the pieces: they come from the mesh.
+    """
+    key = f"{key}-{piece_budget.CACHE_TAG}-c{CLEANING_VERSION}"
+    directory = cache_dir() / "decomposed" / key
+    manifest = directory / "pieces.json"
+    if manifest.exists():
+        names = json.loads(manifest.read_text())["pieces"]
+        return [str((directory / name).resolve()) for name in names]
+    hull = mesh.convex_hull
+    if mesh.volume >= (1.0 - CONVEXITY_TOLERANCE) * hull.volume:
+        parts = [(hull.vertices, hull.faces)]
+    else:
+        import coacd  # Imported here: only non-convex user meshes need it.
+
+        warnings.warn(f"{label}: non-convex: decomposing into at most {max_pieces} convex pieces (CoACD, "
+                      "seconds to minutes; cached for next time)", MeshNote, stacklevel=3)
+
+        coacd.set_log_level("error")
+        result = coacd.run_coacd(
+            coacd.Mesh(np.asarray(mesh.vertices, float), np.asarray(mesh.faces, np.int32)),
+            threshold=COACD_THRESHOLD,
+            max_convex_hull=max_pieces,
+            seed=0,
+        )
+        parts = [(np.asarray(vertices, float), None) for vertices, _ in result]
+    budgeted = [piece_budget.budgeted_piece(vertices)[0] for vertices, _ in parts]
+    try:
+        clean, _ = cleaning.clean_pieces(budgeted, float(mesh.volume))
+    except cleaning.CleaningError as error:
+        raise ObjectError(f"{label}: {error}") from None
+    parts = [(piece.vertices, piece.faces) for piece in clean]
+    # Write into a private directory, then rename it into place: a concurrent process (parallel
+    # trials) either sees the complete directory or none, and the first to finish wins.
+    directory.parent.mkdir(parents=True, exist_ok=True)
+    staging = Path(tempfile.mkdtemp(dir=directory.parent, prefix=key + ".tmp"))
+    names = [f"piece_{index:03d}.obj" for index in range(len(parts))]
+    for name, (vertices, faces) in zip(names, parts):
+        (staging / name).write_text(_obj_text(vertices, faces))
+    (staging / "pieces.json").write_text(json.dumps({"pieces": names}))
+    try:
+        os.rename(staging, directory)
+    except OSError:
+        shutil.rmtree(staging, ignore_errors=True)
+        if not manifest.exists():
+            raise
+        # Another process got there first; use its pieces.
+    names = json.loads(manifest.read_text())["pieces"]
+    return [str((directory / name).resolve()) for name in names]
+
+
+def _lowest_resting_rotation(hull: trimesh.Trimesh, p_Ocm: np.ndarray) -> RotationMatrix:
+    """R_TO that rests the object on the hull face nearest its centre of mass.
+
+    That pose has the lowest centre of mass of all resting poses, hence is stable: were the centre
+    of mass's projection outside the face, tipping over its edge would lower it further.
+    """
+    down = np.array([0.0, 0.0, -1.0])
+    distances = np.einsum("ij,ij->i", hull.face_normals, hull.triangles[:, 0] - p_Ocm)
+    # Of equally near faces, prefer the one already facing down (keep the file's orientation).
+    nearest = np.flatnonzero(distances <= distances.min() * (1.0 + 1e-9) + 1e-12)
+    n_O = hull.face_normals[nearest[int(np.argmax(hull.face_normals[nearest] @ down))]]
+    axis = np.cross(n_O, down)
+    sin, cos = np.linalg.norm(axis), float(np.dot(n_O, down))
+    if sin < 1e-12:
+        return RotationMatrix() if cos > 0.0 else RotationMatrix.MakeXRotation(math.pi)
+    return RotationMatrix(AngleAxis(math.atan2(sin, cos), axis / sin))
+
+
+def _rests_stably_upright(hull: trimesh.Trimesh, p_Ocm: np.ndarray) -> bool:
+    """Whether the object rests stably with its frame's z up: on a downward hull face (not an edge
+    or a point) over which its centre of mass lies, or so that no resting pose lowers its centre of
+    mass by more than STABLE_POSE_TOLERANCE of its size (a sphere, rolling off the vertex its
+    tessellation stands on)."""
+    height = float(p_Ocm[2] - hull.vertices[:, 2].min())
+    distances = np.einsum("ij,ij->i", hull.face_normals, hull.triangles[:, 0] - p_Ocm)
+    if height - float(distances.min()) <= STABLE_POSE_TOLERANCE * float(np.max(hull.extents)):
+        return True
+    down = np.array([0.0, 0.0, -1.0])
+    z_min = float(hull.vertices[:, 2].min())
+    bottom = (hull.face_normals @ down > 1.0 - 1e-6) & (np.abs(hull.triangles[:, :, 2] - z_min).max(axis=1) < 1e-6)
+    if not np.any(bottom):
+        return False
+    polygon = np.unique(np.round(hull.triangles[bottom].reshape(-1, 3)[:, :2], 9), axis=0)
+    if len(polygon) < 3:
+        return False  # a point or an edge
+    try:
+        equations = ConvexHull(polygon).equations  # a·x + b ≤ 0 inside
+    except QhullError:  # collinear points: an edge
+        return False
+    return bool(np.all(equations[:, :2] @ p_Ocm[:2] + equations[:, 2] <= 1e-9))
+
+
+def _user_solid(mesh: trimesh.Trimesh, label: str, keep_largest: bool) -> trimesh.Trimesh:
+    """The solid a checked mesh encloses: its shells united; one component (or the largest)."""
+    from drake_grasp.geometry.solid import enclosed_solid, largest_component
+
+    solid = enclosed_solid(mesh)
+    if solid.components > 1:
+        if not keep_largest:
+            raise ObjectError(f"{label}: {solid.components} separate solids that do not touch (one object must be "
+                              "one piece); keep the largest with --largest-component")
+        return largest_component(solid)
+    return solid.mesh
+
+
+def _likely_scale(extent: float) -> tuple[str, float] | None:
+    """(unit, scale) that brings a largest extent `extent` (file units) into PLAUSIBLE_EXTENTS."""
+    for unit, factor in (("millimetres", 0.001), ("centimetres", 0.01), ("inches", 0.0254)):
+        if PLAUSIBLE_EXTENTS[0] <= extent * factor <= PLAUSIBLE_EXTENTS[1]:
+            return unit, factor
+    return None
+
+
+def _warn_units(mesh: trimesh.Trimesh, label: str, scale: float) -> None:
+    """One UnitsWarning when the object's largest extent (m) is implausible for the hand."""
+    extent = float(np.max(mesh.extents))
+    if PLAUSIBLE_EXTENTS[0] <= extent <= PLAUSIBLE_EXTENTS[1]:
+        return
+    if extent > PLAUSIBLE_EXTENTS[1]:
+        guess = _likely_scale(extent / scale)
+        hint = (f"is the file in {guess[0]}? use --scale {guess[1]:g}" if guess
+                else "is the file in metres? set --scale")
+        message = f"{label}: largest extent {extent:.3g} m: {hint}"
+    else:
+        message = (f"{label}: largest extent {extent * 1000:.3g} mm, smaller than the hand can grasp: "
+                   "is the file in metres? set --scale")
+    warnings.warn(message, UnitsWarning, stacklevel=3)
+
+
+def _simplified(mesh: trimesh.Trimesh, label: str) -> trimesh.Trimesh:
+    """The mesh, or, above MAX_FACES faces, its quadric-decimation simplification (trimesh over the
+    fast-simplification library) to MAX_FACES faces, when that stays a closed solid."""
+    if len(mesh.faces) <= MAX_FACES:
+        return mesh
+    simple = mesh.simplify_quadric_decimation(face_count=MAX_FACES)
+    simple.merge_vertices()
+    if not (simple.is_watertight and simple.volume > 0.9 * mesh.volume):
+        return mesh  # Decimation broke the surface: keep the full mesh (slower, still correct).
+    return simple
+
+
+def object_from_mesh(
+    path: str | os.PathLike,
+    mass: float | None = None,
+    name: str | None = None,
+    *,
+    density: float = DEFAULT_DENSITY,
+    scale: float = 1.0,
+    max_pieces: int = DEFAULT_MAX_PIECES,
+    stable_pose: bool | None = None,
+    closest_primitive: str | None = None,
+    rgba=YELLOW_PAPER_RGBA,
+    friction: float | None = None,
+    largest_component: bool = False,
+) -> ObjectSpec:
+    """An object from a closed triangle mesh in any format trimesh reads (OBJ, STL, PLY, ...).
+
+    The object is the solid the mesh encloses (:mod:`drake_grasp.geometry.solid`): closed shells
+    that overlap are united (mass and inertia never count an overlap twice); shells that do not
+    touch are an ObjectError naming their count, unless `largest_component` keeps the largest. A
+    largest extent outside PLAUSIBLE_EXTENTS gets a one-line UnitsWarning naming the likely unit. A
+    mesh of more than MAX_FACES faces is simplified for contact and rendering (quadric decimation,
+    trimesh with fast-simplification), saying so with a MeshNote; mass properties come from the
+    full mesh.
+
+    Checks: the file exists and loads; vertices are finite; the mesh is not flat, is watertight,
+    has consistent winding and non-zero volume. A mesh whose winding is consistently inverted
+    (negative volume) is flipped and accepted. A convex mesh (volume within CONVEXITY_TOLERANCE of
+    its hull's) becomes one convex piece (its hull); a non-convex one is split into at most
+    `max_pieces` convex pieces by CoACD (seed 0, quiet). The pieces are cached by the file's
+    content hash (and `scale` and the CoACD settings), so loading the same file again does not
+    decompose it again. Mass properties come from the mesh itself (exact for a closed mesh).
+
+    Args:
+        path: The mesh file; its units must be metres (or use `scale`).
+        mass: Mass (kg); default density × volume.
+        name: Model name; default the file's stem.
+        density: Density (kg/m³) used when `mass` is None; default DEFAULT_DENSITY (assumed).
+        scale: Uniform scale applied to the file's coordinates (e.g. 0.001 for millimetres).
+        max_pieces: Most convex pieces of a decomposition.
+        stable_pose: If False, the object rests with the file's z up (R_TO = I) on its lowest
+            point (which may not be a stable pose); if True, R_TO rests it on the hull face nearest
+            its centre of mass (its lowest, hence stable, resting pose); if None (default), the
+            file's z up when the object rests stably that way, else the stable pose (as it would
+            fall), saying so with an `UnstablePoseWarning`. O's axes are the file's either way.
+        closest_primitive: Ground truth for shape resemblance if known ('sphere', 'cylinder',
+            'box'); default None.
+        rgba: Visual colour.
+        friction: Coulomb friction of this object; None uses the scene's.
+        largest_component: Keep the largest of several separate components instead of failing.
+
+    Raises:
+        ObjectError: One line naming the file and the problem.
+    """
+    label = os.fspath(path)
+    path = Path(path).expanduser()
+    if closest_primitive not in (None, *PRIMITIVE_NAMES):
+        raise ObjectError(
+            f"{label}: closest_primitive must be one of {PRIMITIVE_NAMES}, "
+            f"got {closest_primitive!r}"
+        )
+    if not (scale > 0.0 and math.isfinite(scale)):
+        raise ObjectError(f"{label}: scale must be positive, got {scale!r}")
+    mesh = _load_checked_mesh(path, label, scale)
+    if len(mesh.faces) > MAX_FACES:  # Said first: what follows takes a while on such a mesh.
+        warnings.warn(f"{label}: {len(mesh.faces):,} faces; simplifying to {MAX_FACES:,} for contact and rendering",
+                      MeshNote, stacklevel=2)
+    mesh = _user_solid(mesh, label, largest_component)
+    _warn_units(mesh, label, scale)
+    digest = hashlib.sha256(path.read_bytes()).hexdigest()
+    settings = f"{scale!r}|{max_pieces}|{COACD_THRESHOLD!r}|{CONVEXITY_TOLERANCE!r}|{largest_component}|{MAX_FACES}"
+    key = hashlib.sha256((digest + settings).encode()).hexdigest()[:20]
+    volume = float(mesh.volume)
+    centroid = np.asarray(mesh.center_mass, float)
+    unit_inertia = np.asarray(mesh.moment_inertia, float) / float(mesh.mass)
+    contact_mesh = _simplified(mesh, label)
+    piece_paths = _decompose(contact_mesh, f"{_model_name(path.stem)}-{key}", max_pieces, label)
+    rpy_TO = (0.0, 0.0, 0.0)
+    if stable_pose is None and not _rests_stably_upright(contact_mesh.convex_hull, centroid):
+        warnings.warn(f"{label}: with its z up the object would tip over (it rests on an edge or a point, "
+                      "or its centre of mass is not over its base); resting it on its most stable face",
+                      UnstablePoseWarning, stacklevel=2)
+        stable_pose = True
+    if stable_pose:
+        rpy_TO = tuple(RollPitchYaw(_lowest_resting_rotation(contact_mesh.convex_hull, centroid)).vector())
+    pieces = [ShapePiece("convex", (), mesh_path=p) for p in piece_paths]
+    return _make_spec(
+        name or _model_name(path.stem),
+        pieces,
+        mass,
+        density=density,
+        mass_properties=(volume, centroid, unit_inertia),
+        rpy_TO=rpy_TO,
+        closest_primitive=closest_primitive,
+        rgba=rgba,
+        friction=friction,
+        source=str(path.resolve()),
+    )
+
+
+def _piece_from_drake_shape(
+    shape: Shape, X_BG: RigidTransform, label: str, max_pieces: int
+) -> list[ShapePiece]:
+    """Pieces (posed in the body frame B) for one collision geometry of a parsed SDF."""
+    p = tuple(float(v) for v in X_BG.translation())
+    rpy = tuple(float(v) for v in RollPitchYaw(X_BG.rotation()).vector())
+    if isinstance(shape, Sphere):
+        return [ShapePiece("sphere", (shape.radius(),), p, rpy)]
+    if isinstance(shape, Ellipsoid):
+        return [ShapePiece("ellipsoid", (shape.a(), shape.b(), shape.c()), p, rpy)]
+    if isinstance(shape, Box):
+        return [ShapePiece("box", (shape.width(), shape.depth(), shape.height()), p, rpy)]
+    if isinstance(shape, Cylinder):
+        return [ShapePiece("cylinder", (shape.radius(), shape.length()), p, rpy)]
+    if isinstance(shape, Capsule):
+        return [ShapePiece("capsule", (shape.radius(), shape.length()), p, rpy)]
+    if isinstance(shape, Convex):
+        hull = shape.GetConvexHull()  # Scaled, in G; works for every format Drake reads.
+        vertices = np.array([hull.vertex(i) for i in range(hull.num_vertices())])
+        return [ShapePiece("convex", (), p, rpy, _cached_hull_obj("sdf_convex", vertices))]
+    if isinstance(shape, Mesh):
+        scale = np.asarray(shape.scale3())
+        if not np.allclose(scale, scale[0]):
+            raise ObjectError(f"{label}: non-uniform mesh scale is not supported")
+        mesh = _load_checked_mesh(Path(shape.source().path()), label, float(scale[0]))
+        key = hashlib.sha256(Path(shape.source().path()).read_bytes()).hexdigest()[:20]
+        paths = _decompose(mesh, f"sdf_mesh-{key}-{float(scale[0])!r}-{max_pieces}", max_pieces, label)
+        return [ShapePiece("convex", (), p, rpy, path) for path in paths]
+    raise ObjectError(f"{label}: collision shape {type(shape).__name__} is not supported")
+
+
+def object_from_sdf(
+    path: str | os.PathLike,
+    mass: float | None = None,
+    name: str | None = None,
+    *,
+    density: float = DEFAULT_DENSITY,
+    max_pieces: int = DEFAULT_MAX_PIECES,
+    closest_primitive: str | None = None,
+    rgba=YELLOW_PAPER_RGBA,
+    friction: float | None = None,
+) -> ObjectSpec:
+    """An object from an SDFormat (or URDF) file with one model of one free body.
+
+    The file is parsed by Drake; its body's collision geometries become the pieces (non-convex
+    meshes are decomposed like :func:`object_from_mesh`), its inertial gives mass, centre of mass
+    and inertia (a missing or zero mass falls back to `mass` or density × volume). O is placed at
+    the body's centre of mass with the body frame's axes; the object rests with its z up.
+
+    Limits: one model with one body and no joints (not welded, not articulated); the file's
+    visuals, friction and contact properties are replaced by ours (pieces drawn in `rgba`, the
+    scene's ContactParameters); ``package://`` URIs need the package to be findable by Drake's
+    default PackageMap; half spaces, height maps and other non-solid shapes are rejected.
+
+    Args:
+        path: The model file (.sdf or .urdf).
+        mass: Mass (kg); default the file's, else density × volume.
+        name: Model name; default the file's model name.
+        density: Density (kg/m³) when neither `mass` nor the file gives one.
+        max_pieces: Most convex pieces of a decomposed non-convex mesh.
+        closest_primitive: Ground truth for shape resemblance if known.
+        rgba: Visual colour.
+        friction: Coulomb friction of this object; None uses the scene's.
+
+    Raises:
+        ObjectError: One line naming the file and the problem.
+    """
+    from pydrake.multibody.plant import AddMultibodyPlantSceneGraph
+    from pydrake.systems.framework import DiagramBuilder
+
+    label = os.fspath(path)
+    path = Path(path).expanduser()
+    if not path.is_file():
+        raise ObjectError(f"{label}: file not found")
+    builder = DiagramBuilder()
+    plant, scene_graph = AddMultibodyPlantSceneGraph(builder, 0.0)
+    try:
+        models = Parser(plant).AddModels(str(path.resolve()))
+    except Exception as error:  # Drake raises RuntimeError with multi-line messages.
+        raise ObjectError(f"{label}: cannot parse ({_one_line(error)})") from None
+    if len(models) != 1:
+        raise ObjectError(f"{label}: expected one model, found {len(models)}")
+    (model,) = models
+    bodies = [plant.get_body(index) for index in plant.GetBodyIndices(model)]
+    if len(bodies) != 1:
+        raise ObjectError(f"{label}: expected one body, found {len(bodies)}")
+    if plant.GetJointIndices(model):
+        raise ObjectError(f"{label}: the body must be free (the model has joints or is static)")
+    (body,) = bodies
+    inspector = scene_graph.model_inspector()
+    pieces_B = []
+    for geometry_id in plant.GetCollisionGeometriesForBody(body):
+        shape, X_BG = inspector.GetShape(geometry_id), inspector.GetPoseInFrame(geometry_id)
+        pieces_B += _piece_from_drake_shape(shape, X_BG, label, max_pieces)
+    if not pieces_B:
+        raise ObjectError(f"{label}: the body has no collision geometry")
+    file_mass = body.default_mass()
+    mass_properties = None
+    if file_mass > 0.0 and math.isfinite(file_mass):
+        p_BScm = np.asarray(body.default_com(), float)
+        unit_inertia_Bo = body.default_unit_inertia().CopyToFullMatrix3()
+        shift = np.dot(p_BScm, p_BScm) * np.eye(3) - np.outer(p_BScm, p_BScm)
+        unit_inertia = unit_inertia_Bo - shift  # About the centre of mass.
+        # Overlapping pieces overcount the volume; it is only reported, mass comes from the file.
+        volume = _mass_properties_summed(tuple(pieces_B))[0]
+        mass_properties = (volume, p_BScm, unit_inertia)
+        mass = file_mass if mass is None else mass
+    return _make_spec(
+        name or _model_name(plant.GetModelInstanceName(model)),
+        pieces_B,
+        mass,
+        density=density,
+        mass_properties=mass_properties,
+        closest_primitive=closest_primitive,
+        rgba=rgba,
+        friction=friction,
+        source=str(path.resolve()),
+    )
+
+
+# --- Names, primitive strings and paths ---------------------------------------------------------
+
+_NUMBER = r"([0-9]*\.?[0-9]+(?:[eE][-+]?[0-9]+)?)"
+_PRIMITIVE_PATTERNS = {
+    "sphere": re.compile(rf"sphere:{_NUMBER}"),
+    "cube": re.compile(rf"cube:{_NUMBER}"),
+    "cylinder": re.compile(rf"cylinder:{_NUMBER}(?:x{_NUMBER})?"),
+}
+_PRIMITIVE_HELP = "sphere:DIAMETER, cube:EDGE, cylinder:DIAMETER[xLENGTH] (metres)"
+
+
+def resolve_object(name_or_path: str | os.PathLike, **kw) -> ObjectSpec:
+    """The object named on a command line.
+
+    Args:
+        name_or_path: A catalogue name (``PAPER_OBJECTS``); a primitive string such as
+            ``sphere:0.12``, ``cube:0.08``, ``cylinder:0.1x0.3`` or ``cylinder:0.1`` (metres;
+            length default CYLINDER_FAMILY_LENGTH); or the path of a mesh (any format trimesh
+            reads) or an ``.sdf``/``.urdf`` model file.
+        **kw: Passed on to :func:`paper_object`, :func:`sphere_object` (etc.),
+            :func:`object_from_mesh` or :func:`object_from_sdf`.
+
+    Raises:
+        ObjectError: Unknown name (listing the valid names), bad primitive string, missing or bad
+            file.
+    """
+    if not isinstance(name_or_path, str):
+        return _object_from_file(Path(name_or_path), os.fspath(name_or_path), kw)
+    text = name_or_path.strip()
+    if not text:
+        raise ObjectError("empty object name; give a catalogue name, a primitive such as sphere:0.12, "
+                          "or a mesh file")
+    if text in _PAPER_FACTORIES:
+        return paper_object(text, **kw)
+    kind = text.split(":", 1)[0].lower() if ":" in text else None
+    if kind in _PRIMITIVE_PATTERNS:
+        match = _PRIMITIVE_PATTERNS[kind].fullmatch(text.lower())
+        if match is None:
+            raise ObjectError(f"bad primitive {text!r}; expected {_PRIMITIVE_HELP}")
+        values = [float(v) for v in match.groups() if v is not None]
+        if kind == "sphere":
+            return sphere_object(*values, **kw)
+        if kind == "cube":
+            return cube_object(*values, **kw)
+        return cylinder_object(*values, **kw)
+    path = Path(text).expanduser()
+    if path.suffix or os.sep in text or "/" in text or path.exists():
+        return _object_from_file(path, text, kw)
+    raise ObjectError(
+        f"unknown object {text!r}; valid names: {', '.join(PAPER_OBJECTS)}; or {_PRIMITIVE_HELP}; "
+        "or a mesh/SDF file path"
+    )
+
+
+def resolve_user_object(
+    name_or_path: str, *, scale: float = 1.0, largest_component: bool = False, **kw
+) -> ObjectSpec:
+    """:func:`resolve_object` with the options that only a mesh file takes (a command line's
+    ``--scale`` and ``--largest-component``): ObjectError if they are given for anything else."""
+    text = str(name_or_path).strip()
+    if scale == 1.0 and not largest_component:
+        return resolve_object(text, **kw)
+    options = "--scale" if scale != 1.0 else "--largest-component"
+    if not is_mesh_file(text):
+        raise ObjectError(f"{text}: {options} applies to mesh files only (OBJ, STL, PLY)")
+    if not (scale > 0.0 and math.isfinite(scale)):
+        raise ObjectError(f"--scale must be positive, got {scale!r}")
+    return resolve_object(text, scale=scale, largest_component=largest_component, **kw)
+
+
+def is_mesh_file(name_or_path: str) -> bool:
+    """Whether an object argument names a mesh file (what `--scale` applies to), not a catalogue
+    object, a primitive or an SDF/URDF model."""
+    text = str(name_or_path).strip()
+    return not (text in _PAPER_FACTORIES or ":" in text or Path(text).suffix.lower() in (".sdf", ".urdf"))
+
+
+def mesh_options(scale: float = 1.0, largest_component: bool = False) -> dict:
+    """The mesh options that differ from their defaults, as keyword arguments of
+    :func:`resolve_user_object` (plain data: a sweep's tasks carry them to its workers, and a
+    record's fingerprint includes them)."""
+    options = {}
+    if scale != 1.0:
+        options["scale"] = float(scale)
+    if largest_component:
+        options["largest_component"] = True
+    return options
+
+
+def _object_from_file(path: Path, label: str, kw: dict) -> ObjectSpec:
+    if not path.exists():
+        raise ObjectError(f"{label}: file not found")
+    if path.suffix.lower() in (".sdf", ".urdf"):
+        return object_from_sdf(path, **kw)
+    return object_from_mesh(path, **kw)
+
