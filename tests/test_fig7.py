@@ -27,7 +27,8 @@ def test_compare_counts_only_this_plans_trials_and_picks_the_best_grasp(tmp_path
     assert row.eigengrasp_best == pytest.approx(1.0)
     assert row.compliant == 1.0 and row.compliant_grasp == "box"
     lines = fig7.summary_lines([row], "contact", "test")
-    assert "average 50 % (3/6, 95 % CI 19-81 %)" in lines[0] and "best 100%" in lines[0]
+    assert "average 50 % (3/6, 95 % CI 19-81 %)" in lines[0] and "best 100 % (2/2; " in lines[0]
+    assert row.best_counts == (2, 2) and row.eigengrasp_counts == (3, 6) and row.compliant_counts == (1, 1)
     assert all(p.exists() for p in fig7.plot([row], tmp_path, "contact"))
 
 

@@ -45,3 +45,14 @@ def test_wilson_rejects_impossible_counts():
 def test_format_rate():
     assert format_rate(9, 10) == "90 % (9/10, 95 % CI 60-98 %)"
     assert format_rate(0, 0) == "n/a"
+
+
+def test_short_rate_and_error_bars():
+    from drake_grasp.experiments.stats import error_bars, short_rate
+
+    assert short_rate(9, 10).startswith("90 % (9/10; ") and short_rate(0, 0) == "n/a"
+    heights, (below, above) = error_bars([(10, 10), (0, 4), (0, 0)])
+    assert heights == [100.0, 0.0, 0.0]
+    assert above[0] == 0.0 and below[0] > 20.0  # 10/10: the interval reaches down to ~72 %
+    assert below[1] == 0.0 and above[1] > 40.0  # 0/4: up to ~49 %
+    assert below[2] == above[2] == 0.0

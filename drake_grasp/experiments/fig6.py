@@ -20,7 +20,7 @@ import pathlib
 import numpy as np
 
 from drake_grasp.experiments.results import axis_label, save_figure
-from drake_grasp.experiments.stats import format_rate
+from drake_grasp.experiments.stats import error_bars, format_rate, short_rate
 
 GRASPS = ("spherical", "cylindrical", "box")
 RESEMBLANCE_OF = {"spherical": "sphere", "cylindrical": "cylinder", "box": "box"}
@@ -121,7 +121,8 @@ def summary_lines(stats: dict[str, dict[str, GraspStats]]) -> list[str]:
     total_ok = total = 0
     for o, per_grasp in stats.items():
         choice = chosen_grasp(per_grasp)
-        cells = ", ".join(f"{g} {s.successes}/{s.trials} (res {s.resemblance:.2f})" for g, s in per_grasp.items())
+        cells = ", ".join(f"{g} {short_rate(s.successes, s.trials)} (res {s.resemblance:.2f})"
+                          for g, s in per_grasp.items())
         if choice is not None:
             total_ok += per_grasp[choice].successes
             total += per_grasp[choice].trials
@@ -133,14 +134,16 @@ def summary_lines(stats: dict[str, dict[str, GraspStats]]) -> list[str]:
 
 def plot(stats: dict[str, dict[str, GraspStats]], out_dir: pathlib.Path) -> list[pathlib.Path]:
     """Fig. 6's layout: per object, each grasp's mean resemblance (y) as a circle whose area is its
-    success rate; the chosen grasp ringed. Writes fig6.png and fig6.svg."""
+    success rate; the chosen grasp ringed. Below it, each grasp's success rate with its 95 % Wilson
+    interval (the chosen grasp's bar outlined). Writes fig6.png and fig6.svg."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
     colours = {"spherical": "tab:red", "cylindrical": "tab:blue", "box": "tab:green"}
-    fig, ax = plt.subplots(figsize=(1.3 * len(stats) + 3.5, 4.2))
+    fig, (ax, bars) = plt.subplots(2, 1, figsize=(1.3 * len(stats) + 3.5, 7.0), sharex=True,
+                                   gridspec_kw={"height_ratios": [3, 2]})
     for x, (o, per_grasp) in enumerate(stats.items()):
         choice = chosen_grasp(per_grasp)
         for k, (g, s) in enumerate(per_grasp.items()):
@@ -153,8 +156,16 @@ def plot(stats: dict[str, dict[str, GraspStats]], out_dir: pathlib.Path) -> list
             ax.annotate(f"{s.successes}/{s.trials}", (xx, s.resemblance), fontsize=6, ha="center", va="center")
             if g == choice:
                 ax.scatter([xx], [s.resemblance], s=size + 120, facecolors="none", edgecolors="black", linewidths=1.5)
-    ax.set_xticks(range(len(stats)))
-    ax.set_xticklabels([axis_label(o) for o in stats], fontsize=8)
+        for k, (g, s) in enumerate(per_grasp.items()):
+            heights, whiskers = error_bars([(s.successes, s.trials)])
+            bars.bar([x + (k - 1) * 0.22], heights, 0.22, color=colours[g], alpha=0.7, yerr=whiskers, capsize=2,
+                     error_kw={"linewidth": 0.8}, edgecolor="black", linewidth=1.4 if g == choice else 0.0)
+    bars.set_xticks(range(len(stats)))
+    bars.set_xticklabels([axis_label(o) for o in stats], fontsize=8)
+    bars.set_ylim(0, 105)
+    bars.set_ylabel("success (%)")
+    bars.grid(alpha=0.3, axis="y")
+    bars.set_title("success per grasp (error bars: 95 % Wilson; outlined: the algorithm's choice)", fontsize=8)
     ax.set_ylim(-0.05, 1.1)
     ax.set_ylabel("shape resemblance")
     ax.grid(alpha=0.3, axis="y")
@@ -163,7 +174,7 @@ def plot(stats: dict[str, dict[str, GraspStats]], out_dir: pathlib.Path) -> list
                   title_fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), markerscale=0.35, frameon=False)
     else:  # oracle trials measure no resemblance
         ax.text(0.5, 0.5, "no resemblances measured (oracle trials)", transform=ax.transAxes, ha="center")
-    ax.set_title("Fig. 6: resemblance of each compliant grasp's shape vs. its success")
+    ax.set_title("Fig. 6: resemblance of each compliant grasp's shape vs. its success", fontsize=9)
     fig.tight_layout()
     paths = save_figure(fig, out_dir, "fig6", dpi=120)
     plt.close(fig)

@@ -22,6 +22,7 @@ import time
 import numpy as np
 
 from drake_grasp.experiments.results import axis_label, save_figure
+from drake_grasp.experiments.stats import error_bars, short_rate
 
 from drake_grasp.experiments import fig6
 
@@ -253,6 +254,24 @@ class Comparison:
     eigengrasp_trials: int
     per_grasp: dict
 
+    @property
+    def compliant_counts(self) -> tuple[int, int]:
+        """(successes, trials) of the compliance-centric side."""
+        if not self.compliant_trials or not np.isfinite(self.compliant):
+            return 0, 0
+        return round(self.compliant * self.compliant_trials), self.compliant_trials
+
+    @property
+    def eigengrasp_counts(self) -> tuple[int, int]:
+        """(successes, trials) over all of the planner's executed grasps."""
+        return sum(ok for ok, _ in self.per_grasp.values()), sum(n for _, n in self.per_grasp.values())
+
+    @property
+    def best_counts(self) -> tuple[int, int]:
+        """(successes, trials) of the planner's best grasp (chosen in hindsight: its interval is that
+        grasp's own, and the choice makes it optimistic)."""
+        return max(self.per_grasp.values(), key=lambda c: (c[0] / c[1] if c[1] else -1.0, c[1]), default=(0, 0))
+
 
 def compare(objects, eigen_rows: list[dict], compliant_stats: dict, plan_tag: str) -> list[Comparison]:
     out = []
@@ -281,7 +300,7 @@ def summary_lines(rows: list[Comparison], energy: str, compliant_source: str) ->
         lines.append(
             f"{c.object}: compliance-centric {_rate(c.compliant, c.compliant_trials)} ({c.compliant_grasp}); "
             f"Eigengrasp ({energy}) average {_rate(c.eigengrasp_average, c.eigengrasp_trials)}, "
-            f"best {_pct(c.eigengrasp_best)} [{grasps}]")
+            f"best {short_rate(*c.best_counts)} [{grasps}]")
     lines.append(f"compliance-centric side: {compliant_source}")
     lines.append(PAPER_FINDINGS)
     return lines
@@ -294,10 +313,6 @@ def _rate(rate: float, trials: int) -> str:
     return format_rate(round(rate * trials), trials) if trials and np.isfinite(rate) else "n/a"
 
 
-def _pct(x: float) -> str:
-    return "n/a" if not np.isfinite(x) else f"{100 * x:.0f}%"
-
-
 def plot(rows: list[Comparison], out_dir: pathlib.Path, energy: str) -> list[pathlib.Path]:
     """Per object: compliance-centric success, Eigengrasp average and best. Writes fig7.png/svg."""
     import matplotlib
@@ -308,17 +323,19 @@ def plot(rows: list[Comparison], out_dir: pathlib.Path, energy: str) -> list[pat
     fig, ax = plt.subplots(figsize=(max(7.5, 1.5 * len(rows) + 4), 4))
     x = np.arange(len(rows))
     width = 0.26
-    series = [("compliance-centric", [c.compliant for c in rows], "tab:orange"),
-              (f"Eigengrasp average ({energy})", [c.eigengrasp_average for c in rows], "tab:gray"),
-              (f"Eigengrasp best ({energy})", [c.eigengrasp_best for c in rows], "tab:blue")]
-    for k, (label, values, colour) in enumerate(series):
-        values = np.nan_to_num(np.asarray(values, float) * 100, nan=0.0)
-        ax.bar(x + (k - 1) * width, values, width, label=label, color=colour)
+    series = [("compliance-centric", [c.compliant_counts for c in rows], "tab:orange"),
+              (f"Eigengrasp average ({energy})", [c.eigengrasp_counts for c in rows], "tab:gray"),
+              (f"Eigengrasp best ({energy})", [c.best_counts for c in rows], "tab:blue")]
+    for k, (label, counts, colour) in enumerate(series):
+        heights, whiskers = error_bars(counts)
+        ax.bar(x + (k - 1) * width, heights, width, label=label, color=colour, yerr=whiskers, capsize=2,
+               error_kw={"linewidth": 0.8})
     ax.set_xticks(x)
     ax.set_xticklabels([axis_label(c.object) for c in rows], fontsize=8)
     ax.set_ylim(0, 105)
     ax.set_ylabel("success (%)")
-    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), frameon=False)
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), frameon=False,
+              title="error bars: 95 % Wilson", title_fontsize=7)
     ax.grid(alpha=0.3, axis="y")
     ax.set_title("Fig. 7: compliance-centric grasps vs. the Eigengrasp planner\n(same arm, controller, seeds and success test)",
                  fontsize=9)

@@ -29,7 +29,7 @@ import numpy as np
 
 from drake_grasp.experiments import fig6, fig7
 from drake_grasp.experiments.results import save_figure
-from drake_grasp.experiments.stats import format_rate, wilson_interval
+from drake_grasp.experiments.stats import error_bars, format_rate, short_rate, wilson_interval
 
 GOAL = 0.90  # chosen-grasp success the study aims for on novel objects (reported as measured)
 
@@ -77,6 +77,7 @@ class NovelRow:
     planner_successes: int
     planner_trials: int
     planner_best: float
+    planner_best_counts: tuple = (0, 0)  # (successes, trials) of the planner's best grasp
 
     @property
     def chosen_rate(self) -> float:
@@ -104,7 +105,8 @@ def study_rows(objects: list[dict], stats6: dict, comparison: list) -> list[Nove
             chosen_trials=per_grasp[choice].trials if choice else 0,
             grasp_successes={g: (s.successes, s.trials) for g, s in per_grasp.items()},
             planner_successes=planner_ok, planner_trials=planner_n,
-            planner_best=c.eigengrasp_best if c else float("nan")))
+            planner_best=c.eigengrasp_best if c else float("nan"),
+            planner_best_counts=c.best_counts if c else (0, 0)))
     return rows
 
 
@@ -144,7 +146,7 @@ def summary_lines(rows: list[NovelRow], chosen_rows: list[dict], planner_rows: l
               "Eigengrasp best |", "|---|---|---|---|---|---|---|"]
     for r in rows:
         grasps = ", ".join(f"{g} {k}/{m}" for g, (k, m) in r.grasp_successes.items())
-        best = "n/a" if not np.isfinite(r.planner_best) else f"{100 * r.planner_best:.0f} %"
+        best = short_rate(*r.planner_best_counts)
         lines.append(f"| {pathlib.Path(r.object).stem} | {r.object_class} | {r.chosen_grasp} | "
                      f"{format_rate(r.chosen_successes, r.chosen_trials)} | {grasps} | "
                      f"{format_rate(r.planner_successes, r.planner_trials)} | {best} |")
@@ -184,15 +186,14 @@ def plot(rows: list[NovelRow], out_dir: pathlib.Path) -> list[pathlib.Path]:
     x = np.arange(len(rows))
     width = 0.27
     fig, ax = plt.subplots(figsize=(max(7.5, 0.55 * len(rows) + 4), 4.2))
-    chosen = np.array([r.chosen_rate for r in rows]) * 100
-    intervals = np.array([wilson_interval(r.chosen_successes, r.chosen_trials) for r in rows]).reshape(-1, 2) * 100
-    error = np.vstack([chosen - intervals[:, 0], intervals[:, 1] - chosen])
-    ax.bar(x - width, np.nan_to_num(chosen), width, color="tab:orange", label="compliance-centric (chosen grasp)",
-           yerr=np.nan_to_num(error), capsize=2, error_kw={"linewidth": 0.8})
-    ax.bar(x, np.nan_to_num(np.array([r.planner_average for r in rows]) * 100), width, color="tab:gray",
-           label="Eigengrasp average")
-    ax.bar(x + width, np.nan_to_num(np.array([r.planner_best for r in rows]) * 100), width, color="tab:blue",
-           label="Eigengrasp best")
+    series = [("compliance-centric (chosen grasp)", [(r.chosen_successes, r.chosen_trials) for r in rows],
+               "tab:orange"),
+              ("Eigengrasp average", [(r.planner_successes, r.planner_trials) for r in rows], "tab:gray"),
+              ("Eigengrasp best", [r.planner_best_counts for r in rows], "tab:blue")]
+    for k, (label, counts, colour) in enumerate(series):
+        heights, whiskers = error_bars(counts)
+        ax.bar(x + (k - 1) * width, heights, width, color=colour, label=label, yerr=whiskers, capsize=2,
+               error_kw={"linewidth": 0.8})
     ax.set_xticks(x)
     ax.set_xticklabels([pathlib.Path(r.object).stem for r in rows], fontsize=7, rotation=60, ha="right")
     ax.set_ylim(0, 105)

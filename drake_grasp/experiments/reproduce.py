@@ -19,7 +19,7 @@ from drake_grasp.experiments import fig4, fig6, fig7, novel
 from drake_grasp.experiments.replays import ensure_replays
 from drake_grasp.experiments.report_page import write_report_html
 from drake_grasp.experiments.results import write_atomically
-from drake_grasp.experiments.stats import format_rate
+from drake_grasp.experiments.stats import format_rate, short_rate
 
 # Written by scripts/bench_scaling.py; quoted in the report when present.
 SCALING_FILE = pathlib.Path(__file__).resolve().parents[2] / "docs" / "results" / "scaling.json"
@@ -81,17 +81,17 @@ def fig6_claims(stats: dict) -> list[Claim]:
                             "yes" if abs(rate - 86 / 90) <= 0.10 else "no", "within 10 points of the paper"))
     annulus = [o for o in ANNULUS if o in stats]
     if annulus:
-        low = min(s.rate for o in annulus for s in stats[o].values() if s.trials)
+        low, lowest = min((s.rate, (s.successes, s.trials)) for o in annulus for s in stats[o].values() if s.trials)
         claims.append(Claim("Fig. 6: in the annulus all three grasps do about equally well",
                             "all grasps high in the annulus",
-                            f"lowest success of any grasp on an annulus object: {100 * low:.0f} %",
+                            "lowest success of any grasp on an annulus object: " + short_rate(*lowest),
                             "yes" if low >= 0.7 else "no", "every grasp on every annulus object >= 70 %"))
     ball = stats.get("soccer_ball")
     if ball:
         rates = {g: s.rate for g, s in ball.items()}
         only = rates["spherical"] >= 0.8 and max(rates["cylindrical"], rates["box"]) <= 0.2
         claims.append(Claim("Fig. 6: on the soccer ball only the spherical grasp works", "only spherical",
-                            ", ".join(f"{g} {100 * r:.0f} %" for g, r in rates.items()),
+                            ", ".join(f"{g} {short_rate(s.successes, s.trials)}" for g, s in ball.items()),
                             "yes" if only else ("partly" if rates["spherical"] >= 0.8 else "no"),
                             "spherical >= 80 % and the others <= 20 %"))
     rays = [o for o in ("soccer_ball", "game_box", "bottle_case") if o in stats]
@@ -99,7 +99,7 @@ def fig6_claims(stats: dict) -> list[Claim]:
         rates = sorted((s.rate for s in stats[o].values()), reverse=True)
         clear = rates[0] - rates[-1] >= 0.5
         claims.append(Claim(f"Fig. 6: on the {o} (a sun ray) one grasp is clearly better", "one grasp clearly best",
-                            ", ".join(f"{g} {100 * s.rate:.0f} %" for g, s in stats[o].items()),
+                            ", ".join(f"{g} {short_rate(s.successes, s.trials)}" for g, s in stats[o].items()),
                             "yes" if clear else "no", "best minus worst grasp >= 50 points"))
     return claims
 
@@ -111,12 +111,13 @@ def fig7_claims(comparison: list) -> list[Claim]:
         if o in by:
             c = by[o]
             claims.append(Claim(f"Fig. 7: the planner fails every attempt on the {o}", "0 %",
-                                f"planner average {100 * c.eigengrasp_average:.0f} %, best {100 * c.eigengrasp_best:.0f} %",
+                                f"planner average {short_rate(*c.eigengrasp_counts)}, best {short_rate(*c.best_counts)}",
                                 "yes" if c.eigengrasp_average == 0 else "no", "planner average = 0"))
     if "game_box" in by:
         c = by["game_box"]
         claims.append(Claim("Fig. 7: game box 100 % for both methods", "100 % / 100 %",
-                            f"compliance-centric {100 * c.compliant:.0f} %, planner best {100 * c.eigengrasp_best:.0f} %",
+                            f"compliance-centric {short_rate(*c.compliant_counts)}, planner best "
+                            f"{short_rate(*c.best_counts)}",
                             "yes" if c.compliant >= 0.9 and c.eigengrasp_best >= 0.9 else "no", "both >= 90 %"))
     for o in ("sponge", "toy_bridge", "spectacle_case"):
         if o in by:
@@ -125,7 +126,8 @@ def fig7_claims(comparison: list) -> list[Claim]:
             paper = "not equal" if o == "spectacle_case" else "equal"
             agrees = (not equal) if o == "spectacle_case" else equal
             claims.append(Claim(f"Fig. 7: annulus object {o}: the two methods are {paper}", paper,
-                                f"compliance-centric {100 * c.compliant:.0f} %, planner best {100 * c.eigengrasp_best:.0f} %",
+                                f"compliance-centric {short_rate(*c.compliant_counts)}, planner best "
+                                f"{short_rate(*c.best_counts)}",
                                 "yes" if agrees else "no", "equal = within 20 points (planner's best grasp)"))
     return claims
 

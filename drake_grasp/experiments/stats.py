@@ -47,3 +47,29 @@ def format_rate(successes: int, trials: int) -> str:
     lo, hi = wilson_interval(successes, trials)
     return (f"{100 * successes / trials:.0f} % ({successes}/{trials}, {100 * CONFIDENCE:.0f} % CI "
             f"{100 * lo:.0f}-{100 * hi:.0f} %)")
+
+
+def short_rate(successes: int, trials: int) -> str:
+    """'90 % (9/10; 60-98 %)': a rate in a table cell, with its 95 % interval; 'n/a' for no trials."""
+    if trials == 0:
+        return "n/a"
+    lo, hi = wilson_interval(successes, trials)
+    return f"{100 * successes / trials:.0f} % ({successes}/{trials}; {100 * lo:.0f}-{100 * hi:.0f} %)"
+
+
+def error_bars(counts) -> tuple[list[float], list[list[float]]]:
+    """Bar heights and matplotlib `yerr` (2 x N, below and above) in percent, from (successes, trials)
+    pairs: each bar is the rate, its whiskers the 95 % Wilson interval. No trials: a zero bar, no whisker."""
+    heights, below, above = [], [], []
+    for successes, trials in counts:
+        if trials == 0:
+            heights.append(0.0)
+            below.append(0.0)
+            above.append(0.0)
+            continue
+        rate = 100.0 * successes / trials
+        lo, hi = wilson_interval(successes, trials)
+        heights.append(rate)
+        below.append(max(0.0, rate - 100.0 * lo))
+        above.append(max(0.0, 100.0 * hi - rate))
+    return heights, [below, above]
