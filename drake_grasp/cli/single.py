@@ -54,6 +54,12 @@ def add_trial(sub) -> None:
                        help="force this compliant grasp instead of the algorithm's choice")
     trial.add_argument("--oracle", action="store_true",
                        help="skip the camera: compute the grasp (--grasp) from the object's true pose and size")
+    trial.add_argument("--estimate-error", metavar="KEY=VALUE,...",
+                       help="add a known error to the estimate the grasp is computed from: along, across "
+                       "(m, horizontal, along and across the object's principal axis), yaw_deg (deg), size "
+                       "(factor on the extents), e.g. along=0.02,yaw_deg=10; with --method eigengrasp, to the "
+                       "object pose the planned hand pose is expressed against (no size: the planner has the "
+                       "exact model)")
     planner = trial.add_argument_group(
         "--method eigengrasp", "plan with the Eigengrasp planner (table loaded), execute its best grasp the "
         "arm can reach, judge with the same success test (one trial of Fig. 7)")
@@ -125,36 +131,38 @@ def _run_demo(args) -> int:
 
 
 def _run_trial(args) -> int:
-    from drake_grasp.grasps import oracle_estimate, plan_compliant_grasp
-    from drake_grasp.trial import run_compliant_trial, run_trial
+    from drake_grasp import trial
 
-    replay, scenario, spec = single_run_inputs(args)
-    planner_options = {"--energy": args.energy, "--steps": args.steps, "--plan-seed": args.plan_seed,
-                       "--rank": args.rank}
+    replay, scenario, obj = single_run_inputs(args)
+    error = _estimate_error_arg(args.estimate_error)
+    options = dict(scenario_file=args.scenario or "", scenario_name=args.scenario_name, scale=args.scale,
+                   largest_component=args.largest_component, estimate_error=error)
     if args.method == "eigengrasp":
-        return _run_eigengrasp_trial(args, replay)
-    given = [name for name, value in planner_options.items() if value is not None]
-    if given:
-        raise UsageError(f"{', '.join(given)}: only with --method eigengrasp")
-    if args.oracle:
-        if args.grasp is None:
-            raise UsageError("--oracle needs --grasp (the oracle does not choose)")
-
-        def plan(X_WO, object_spec):
-            return plan_compliant_grasp(args.grasp, oracle_estimate(X_WO, object_spec))
-
-        record = run_trial(scenario, spec, plan, seed=args.seed, method="oracle", grasp=args.grasp,
-                           replay_html=str(replay) if replay else None)
+        settings = _planner_settings_args(args, error)
+        spec = trial.TrialSpec(args.object, "eigengrasp", settings.label, args.seed, planner=settings, **options)
     else:
-        record = run_compliant_trial(scenario, spec, seed=args.seed, grasp=args.grasp,
-                                     replay_html=str(replay) if replay else None)
-    emit(args, dataclasses.asdict(record), f"trial_{record.object}_{record.grasp}_{record.seed}.json",
-         record.summary(), replay)
+        planner_options = {"--energy": args.energy, "--steps": args.steps, "--plan-seed": args.plan_seed,
+                           "--rank": args.rank}
+        given = [name for name, value in planner_options.items() if value is not None]
+        if given:
+            raise UsageError(f"{', '.join(given)}: only with --method eigengrasp")
+        if args.oracle and args.grasp is None:
+            raise UsageError("--oracle needs --grasp (the oracle does not choose)")
+        spec = trial.TrialSpec(args.object, "oracle" if args.oracle else "compliant", args.grasp or "", args.seed,
+                               **options)
+    record = trial.run(spec, str(replay) if replay else None, scenario=scenario, obj=obj)
+    summary = record.summary()
+    if record.planned_grasp is not None:
+        grasp = record.planned_grasp
+        summary += f"; planner rank {grasp['planner_rank']}, eps {grasp['epsilon']:.3f}"
+    name = f"eigengrasp_{spec.planner.rank}" if spec.method == "eigengrasp" else record.grasp
+    emit(args, record.to_dict(), f"trial_{record.object}_{name}_{record.seed}.json", summary, replay)
     return 0
 
 
-def _run_eigengrasp_trial(args, replay: pathlib.Path | None) -> int:
-    from drake_grasp.experiments.fig7 import eigengrasp_trial
+def _planner_settings_args(args, error):
+    """The planner's settings of `trial --method eigengrasp` (UsageError for a bad one)."""
+    from drake_grasp.trial import PlannerSettings
 
     if args.grasp or args.oracle:
         raise UsageError("--grasp and --oracle are for --method compliant (the planner chooses its own grasp)")
@@ -165,19 +173,40 @@ def _run_eigengrasp_trial(args, replay: pathlib.Path | None) -> int:
         raise UsageError(f"--rank must be >= 1, got {rank}")
     plan_seed = 0 if args.plan_seed is None else args.plan_seed
     check_seed(plan_seed)
-    from drake_grasp.objects import mesh_options
+    if error is not None and error.size_scale != 1:
+        raise UsageError("--estimate-error size does not apply to --method eigengrasp (the planner has the exact model)")
+    return PlannerSettings(energy=energy, steps=steps, seed=plan_seed, rank=rank)
 
-    record, grasp = eigengrasp_trial(args.object, args.seed, energy=energy, steps=steps, plan_seed=plan_seed,
-                                     rank=rank, scenario_file=args.scenario or "", scenario_name=args.scenario_name,
-                                     replay_html=str(replay) if replay else None,
-                                     object_options=mesh_options(args.scale, args.largest_component))
-    result = dataclasses.asdict(record)
-    result["planned_grasp"] = grasp
-    summary = record.summary()
-    if grasp is not None:
-        summary += f"; planner rank {grasp['planner_rank']}, eps {grasp['epsilon']:.3f}"
-    emit(args, result, f"trial_{record.object}_eigengrasp_{rank}_{record.seed}.json", summary, replay)
-    return 0
+
+# --estimate-error's keys and their units.
+ESTIMATE_ERROR_KEYS = {"along": "m", "across": "m", "yaw_deg": "deg", "size": "factor"}
+
+
+def _estimate_error_arg(text: str | None):
+    """--estimate-error KEY=VALUE,... as an `EstimateError` (None if not given); UsageError (one line)
+    for an unknown or repeated key, a value that is not a finite number, or a size <= 0."""
+    from drake_grasp.estimate_error import EstimateError
+
+    if text is None:
+        return None
+    keys = ", ".join(f"{k} ({unit})" for k, unit in ESTIMATE_ERROR_KEYS.items())
+    values = {}
+    for item in text.split(","):
+        key, equals, value = (part.strip() for part in item.partition("="))
+        if not equals or key not in ESTIMATE_ERROR_KEYS:
+            raise UsageError(f"--estimate-error {text!r}: expected KEY=VALUE,... with KEY in {keys}")
+        if key in values:
+            raise UsageError(f"--estimate-error {text!r}: {key} is given twice")
+        try:
+            values[key] = float(value)
+        except ValueError:
+            raise UsageError(f"--estimate-error {text!r}: {key} must be a number, got {value!r}") from None
+        if not math.isfinite(values[key]):
+            raise UsageError(f"--estimate-error {text!r}: {key} must be finite")
+    if values.get("size", 1.0) <= 0:
+        raise UsageError(f"--estimate-error {text!r}: size must be > 0 (1 = no size error)")
+    return EstimateError(along=values.get("along", 0.0), across=values.get("across", 0.0),
+                         yaw=math.radians(values.get("yaw_deg", 0.0)), size_scale=values.get("size", 1.0))
 
 
 def _run_plan_eigengrasp(args) -> int:
