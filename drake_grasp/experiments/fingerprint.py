@@ -112,7 +112,7 @@ def trial_fingerprint(spec, scenario_print: str | None = None, object_print: str
     if scenario_print is None:
         scenario_print = scenario_fingerprint(spec.scenario_file, spec.scenario_name)
     if object_print is None:
-        object_print = object_fingerprint(spec.object)
+        object_print = object_fingerprint(spec.object, **spec.object_options())
     parts = ["trial", drake_grasp.__version__, scenario_print, object_print, spec.planned]
     if spec.has_estimate_error:
         parts.append({"estimate_error": spec.estimate_error})
