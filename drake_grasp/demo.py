@@ -4,19 +4,19 @@ The arm brings the open hand above the object, descends along the palm normal un
 it (or reaches its top), closes the fingers with torque close and breakaway, lifts 10 cm and holds
 10 s; the demo says whether the object was held and how much it slipped in the hand during the hold.
 
-It is one grasp trial (`drake_grasp.trial`) with the compliant grasp of the chosen compliance mode
-computed from the object's true pose and size: spherical mode -> the spherical grasp; cylindrical mode
--> the cylindrical grasp for elongated objects, the box grasp for the others.
+It is one oracle trial (`trial.run`: the compliant grasp of the chosen compliance mode computed
+from the object's true pose and size): spherical mode -> the spherical grasp; cylindrical mode -> the
+cylindrical grasp for elongated objects, the box grasp for the others.
 """
 
 import dataclasses
 import math
 
-from drake_grasp.grasps import GraspType, oracle_estimate, plan_compliant_grasp
+from drake_grasp import trial
+from drake_grasp.grasps import GraspType
 from drake_grasp.hand import ComplianceMode
 from drake_grasp.objects import ObjectSpec, resolve_object
 from drake_grasp.station import Scenario
-from drake_grasp.trial import TrialRecord, run_trial
 
 
 @dataclasses.dataclass
@@ -81,12 +81,8 @@ def run_demo(scenario: Scenario, mode: ComplianceMode | None = None, replay_html
     if hold_time is not None:
         scenario = dataclasses.replace(scenario, protocol=dataclasses.replace(
             scenario.protocol, execution=dataclasses.replace(scenario.protocol.execution, hold_time=hold_time)))
-
-    def plan(X_WO, object_spec):
-        return plan_compliant_grasp(grasp, oracle_estimate(X_WO, object_spec))
-
-    record: TrialRecord = run_trial(scenario, spec, plan, seed=seed, method="demo", grasp=grasp.value,
-                                    replay_html=replay_html)
+    record = trial.run(trial.TrialSpec(scenario.object.name, "oracle", grasp.value, seed), replay_html,
+                       scenario=scenario, obj=spec)
     return DemoResult(
         object_name=spec.name, mode=mode.name.lower(), grasp=grasp.value, held=record.success,
         failure=record.failure, lift=record.lift, slip_distance=record.slip_distance,

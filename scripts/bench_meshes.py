@@ -8,7 +8,7 @@ object:
 * the Eigengrasp planner (``contact`` energy): one plan of ``--steps`` annealing steps, its annealing
   rate in steps per second of wall time and of this process's CPU time (other processes on a shared
   machine inflate the first, much less the second), and the plan's wall time;
-* one compliant trial (``run_compliant_trial``, seed 0: wrist-camera exploration, decision, grasp,
+* one compliant trial (``trial.run``, method compliant, seed 0: wrist-camera exploration, decision, grasp,
   lift, hold), its wall and CPU time and its outcome.
 
 Each measurement is repeated ``--repeats`` times and the median reported. ``--before FILE`` adds a
@@ -41,7 +41,7 @@ except ModuleNotFoundError:  # Run from a checkout without installing the packag
 from baselines.eigengrasp.planner import EigengraspPlanner
 from drake_grasp.objects import _convex_vertices
 from drake_grasp.station import DEFAULT_SCENARIO_FILE, load_scenario
-from drake_grasp.trial import run_compliant_trial
+from drake_grasp import trial
 
 PLANNER_CATALOGUE = ("sponge", "spectacle_case", "bottle_case")
 TRIAL_CATALOGUE = ("bottle_case",)
@@ -97,7 +97,7 @@ def time_plan(spec, steps: int) -> dict:
 
 def time_trial(scenario, spec) -> dict:
     wall, cpu = time.perf_counter(), time.process_time()
-    record = run_compliant_trial(scenario, spec, seed=0)
+    record = trial.run(trial.TrialSpec(spec.name, "compliant", "", 0), scenario=scenario, obj=spec)
     return {"trial_wall_time": time.perf_counter() - wall, "trial_cpu_time": time.process_time() - cpu,
             "success": record.success, "failure": record.failure, "grasp": record.chosen_grasp}
 

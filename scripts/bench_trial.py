@@ -13,10 +13,8 @@ import argparse
 import math
 import time
 
-from drake_grasp.grasps import oracle_estimate, plan_compliant_grasp
-from drake_grasp.objects import paper_object
+from drake_grasp import trial
 from drake_grasp.station import DEFAULT_SCENARIO_FILE, load_scenario
-from drake_grasp.trial import run_compliant_trial, run_trial
 
 CASES = [("soccer_ball", "spherical"), ("bottle_case", "cylindrical"), ("sponge", "box"), ("apple", "box")]
 
@@ -33,12 +31,7 @@ def main():
     walls = []
     for name, grasp in CASES:
         start = time.perf_counter()
-        if args.method == "compliant":
-            record = run_compliant_trial(scenario, paper_object(name), seed=0, grasp=grasp)
-        else:
-            record = run_trial(scenario, paper_object(name),
-                               lambda X, s, g=grasp: plan_compliant_grasp(g, oracle_estimate(X, s)),
-                               seed=0, method="oracle", grasp=grasp)
+        record = trial.run(trial.TrialSpec(name, args.method, grasp, 0), scenario=scenario)
         wall = time.perf_counter() - start
         walls.append(wall)
         slip = (f"slip {record.slip_distance * 1000:.2f} mm / {math.degrees(record.slip_angle):.2f} deg"

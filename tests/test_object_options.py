@@ -5,6 +5,7 @@ import trimesh
 
 from drake_grasp import cli
 from drake_grasp.experiments import fig6, fig7
+from drake_grasp.experiments.fingerprint import trial_fingerprint
 from drake_grasp.experiments.runner import fingerprints
 from drake_grasp.objects import is_mesh_file, mesh_options
 
@@ -26,6 +27,7 @@ def test_a_sweep_carries_the_scale_of_its_mesh_files_into_specs_and_fingerprints
     a, b = fingerprints(specs), fingerprints(plain)
     # The mesh's records differ with its scale; the sponge's do not.
     assert [x != y for x, y in zip(a, b)] == [s.object == str(mesh) for s in specs]
+    assert [trial_fingerprint(s) for s in specs] == a  # a spec alone: its mesh options too
     config7 = fig7.Fig7Config(objects=(str(mesh),), scale=0.001)
     assert fig7.plan_fingerprint(str(mesh), object_options=config7.object_options(str(mesh))) != \
         fig7.plan_fingerprint(str(mesh))

@@ -17,7 +17,8 @@ from drake_grasp.objects import paper_object
 from drake_grasp.primitives.estimate import OBJECT_NOT_FOUND, ObjectEstimate
 from drake_grasp.primitives.sequencer import ExplorationPhase
 from drake_grasp.station import MakeStation, load_scenario
-from drake_grasp.trial import run_compliant_trial
+from drake_grasp import trial
+from drake_grasp.estimate_error import EstimateError
 
 CAMERA, GRASP = InputPortIndex(1), InputPortIndex(2)
 
@@ -28,14 +29,16 @@ def _ball_estimate(centre=(0.55, 0.0, 0.10), resemblances=(0.9, 0.1, 0.0)) -> Ob
                           resemblances=dict(zip(("sphere", "cylinder", "box"), resemblances)))
 
 
-def _decide(estimate: ObjectEstimate, exploration_phase: ExplorationPhase, forced_grasp=None, until=0.05):
+def _decide(estimate: ObjectEstimate, exploration_phase: ExplorationPhase, forced_grasp=None, until=0.05,
+            estimate_error=None):
     """Runs the supervisor alone on fixed inputs for `until` seconds; returns it and its context."""
     scenario = load_scenario()
     station = MakeStation(scenario, paper_object("soccer_ball"), camera=False)
     plant = station.plant
     q_start = np.asarray(scenario.protocol.start_configuration, float)
     supervisor = CompliantGraspSupervisor(plant, station.scene_graph, station.wam, plant.GetBodyIndices(station.hand),
-                                          q_start, scenario.protocol.execution, (CAMERA, GRASP), forced_grasp)
+                                          q_start, scenario.protocol.execution, (CAMERA, GRASP), forced_grasp,
+                                          estimate_error)
     context = supervisor.CreateDefaultContext()
     supervisor.GetInputPort("wam.state").FixValue(context, np.concatenate([q_start, np.zeros(7)]))
     supervisor.GetInputPort("contact_results").FixValue(context, ContactResults())
@@ -73,6 +76,16 @@ def test_a_forced_grasp_is_executed_and_the_choice_still_recorded():
         _decide(_ball_estimate(), ExplorationPhase.DONE, forced_grasp="pinch")
 
 
+def test_an_estimate_error_moves_the_grasp_not_the_decision():
+    # The ball's estimate (no principal axis, axes = world): along is world x, across world y.
+    error = EstimateError(along=0.02, across=-0.01)
+    supervisor, context = _decide(_ball_estimate(), ExplorationPhase.DONE, estimate_error=error)
+    decision = supervisor.decision(context)
+    assert decision.chosen == decision.executed == "spherical"
+    np.testing.assert_allclose(decision.estimate.centre, [0.55, 0.0, 0.10])  # the camera's, as it was
+    np.testing.assert_allclose(decision.plan.X_WP_target.translation()[:2], [0.57, -0.01], atol=1e-9)
+
+
 def test_no_object_or_no_reach_ends_the_sequence_with_the_reason():
     supervisor, context = _decide(ObjectEstimate(status=OBJECT_NOT_FOUND), ExplorationPhase.NOT_FOUND)
     assert supervisor.phase(context) == GraspPhase.DONE and supervisor.progress(context).outcome == OBJECT_NOT_FOUND
@@ -83,7 +96,7 @@ def test_no_object_or_no_reach_ends_the_sequence_with_the_reason():
 
 
 def test_the_whole_algorithm_grasps_the_soccer_ball_from_the_camera_alone(short_scenario):
-    record = run_compliant_trial(short_scenario, paper_object("soccer_ball"), seed=1)
+    record = trial.run(trial.TrialSpec("soccer_ball", "compliant", "", 1), scenario=short_scenario)
     assert record.success, record.summary()
     assert record.estimate_source == "camera" and record.chosen_grasp == record.grasp == "spherical"
     assert record.resemblances["sphere"] > 0.5

@@ -7,19 +7,13 @@ import math
 import numpy as np
 from pydrake.math import RigidTransform, RotationMatrix
 
-from drake_grasp import cli
-from drake_grasp.grasps import oracle_estimate, plan_compliant_grasp
+from drake_grasp import cli, trial
 from drake_grasp.objects import paper_object
-from drake_grasp.trial import MISSED, UNREACHABLE, run_trial
-
-
-def _oracle(grasp):
-    return lambda X_WO, spec: plan_compliant_grasp(grasp, oracle_estimate(X_WO, spec))
+from drake_grasp.trial import MISSED, UNREACHABLE, TrialSpec, oracle_plan, run_trial
 
 
 def test_spherical_grasp_of_the_soccer_ball_succeeds(short_scenario):
-    record = run_trial(short_scenario, paper_object("soccer_ball"), _oracle("spherical"), seed=1,
-                       method="oracle", grasp="spherical")
+    record = trial.run(TrialSpec("soccer_ball", "oracle", "spherical", 1), scenario=short_scenario)
     assert record.success, record.summary()
     assert record.lift > 0.08
     assert record.slip_distance < 0.01
@@ -28,7 +22,7 @@ def test_spherical_grasp_of_the_soccer_ball_succeeds(short_scenario):
 
 def test_a_grasp_beside_the_object_misses(short_scenario):
     def beside(X_WO, spec):
-        plan = plan_compliant_grasp("spherical", oracle_estimate(X_WO, spec))
+        plan = oracle_plan("spherical")(X_WO, spec)
         X = plan.X_WP_target
         return dataclasses.replace(plan, X_WP_target=RigidTransform(X.rotation(), X.translation() + [0, 0.3, 0]))
 
@@ -40,7 +34,7 @@ def test_a_grasp_beside_the_object_misses(short_scenario):
 
 def test_an_unreachable_grasp_is_a_failed_trial_not_a_crash(short_scenario):
     def far(X_WO, spec):
-        plan = plan_compliant_grasp("spherical", oracle_estimate(X_WO, spec))
+        plan = oracle_plan("spherical")(X_WO, spec)
         return dataclasses.replace(plan, X_WP_target=RigidTransform(plan.X_WP_target.rotation(), [3.0, 0.0, 0.2]))
 
     record = run_trial(short_scenario, paper_object("apple"), far, seed=0, method="oracle", grasp="spherical")
@@ -48,8 +42,7 @@ def test_an_unreachable_grasp_is_a_failed_trial_not_a_crash(short_scenario):
 
 
 def test_same_seed_same_trial(short_scenario):
-    a = run_trial(short_scenario, paper_object("sponge"), _oracle("box"), seed=3, method="oracle", grasp="box")
-    b = run_trial(short_scenario, paper_object("sponge"), _oracle("box"), seed=3, method="oracle", grasp="box")
+    a, b = (trial.run(TrialSpec("sponge", "oracle", "box", 3), scenario=short_scenario) for _ in range(2))
     assert a.variation == b.variation
     assert a.lift == b.lift and a.slip_distance == b.slip_distance and a.success == b.success
 
@@ -74,16 +67,15 @@ def test_a_planned_grasp_runs_through_the_same_runner(short_scenario):
     # A grasp "planned" in the object frame (hand base 0.3 m above the ball's centre, palm down, spread
     # at 60 deg, fingers preshaped to 20 deg): the arm approaches from a retreat along the palm normal
     # to exactly that pose (no contact guard), preshapes, closes, lifts and holds like any trial.
-    from drake_grasp.grasps import planned_grasp
     from drake_grasp import hand
 
-    spec = paper_object("soccer_ball")
     X_OH = RigidTransform(RotationMatrix.MakeXRotation(math.pi), [0, 0, 0.10 + hand.PALM_HEIGHT + 0.002])
     q = np.array([math.radians(60)] * 2 + [math.radians(20)] * 3 + [math.radians(20) / 3] * 3)
-    record = run_trial(short_scenario, spec, lambda X_WO, s: planned_grasp(X_OH, q, X_WO), seed=0,
-                       method="eigengrasp", grasp="planned")
+    planned = {"X_OH": X_OH.GetAsMatrix4().tolist(), "joint_angles": q.tolist()}
+    record = trial.run(TrialSpec("soccer_ball", "eigengrasp", "planned", 0, planned=planned), scenario=short_scenario)
     assert record.success, record.summary()
     assert not record.approach_stopped_on_contact
+    assert record.planned_grasp == planned
 
 
 def test_trial_cli_runs_the_eigengrasp_planner_through_the_same_runner(capsys, tmp_path, short_scenario_file):

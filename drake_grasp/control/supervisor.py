@@ -14,7 +14,9 @@ primitives:
 * **decide**: when the exploration ends, the supervisor reads the estimate. The compliant grasp is the
   one of the most resembling shape (`grasps.GRASP_OF_SHAPE`), unless the caller forced one (Fig. 6
   executes all three). Its hand pose is computed from the estimate alone (`grasps.plan_compliant_grasp`):
-  no object model, no ground truth, no contact planning.
+  no object model, no ground truth, no contact planning. A study of how far off an estimate may be
+  (issue 15) gives a known `estimate_error.EstimateError`, added to the estimate before the grasp
+  is computed from it (the decision, the grasp of the most resembling shape, is not affected).
 * **approach, close, lift, hold**: the same sequence, controller and timings as every other method
   (`GraspExecutor`), from where the exploration left the arm; the switch now routes the supervisor's
   arm command.
@@ -32,6 +34,7 @@ from pydrake.systems.primitives import PortSwitch
 
 from drake_grasp.control.arm_motion import UNREACHABLE, ReachError
 from drake_grasp.control.grasp_executor import ConnectGraspExecutor, GraspExecutor, _Progress
+from drake_grasp.estimate_error import EstimateError, perturb_estimate
 from drake_grasp.protocol import ExecutionTimes
 from drake_grasp.grasps import GRASP_OF_SHAPE, GraspPlan, GraspType, plan_compliant_grasp
 from drake_grasp.primitives.estimate import OBJECT_NOT_FOUND, ObjectEstimate
@@ -44,10 +47,11 @@ class Decision:
 
     Attributes:
         time: when, s.
-        estimate: the primitives' estimate it decided on.
+        estimate: the primitives' estimate it decided on (without any added estimate error).
         chosen: the grasp of the most resembling shape ("" if the object was not found).
         executed: the grasp executed: `chosen`, or the one the caller forced.
-        plan: the executed grasp's plan (None if the object was not found).
+        plan: the executed grasp's plan, from the estimate with the added error if any (None if the
+            object was not found).
     """
 
     time: float
@@ -70,17 +74,20 @@ class CompliantGraspSupervisor(GraspExecutor):
     """
 
     def __init__(self, plant, scene_graph, wam, hand_bodies: list, q_start: np.ndarray, times: ExecutionTimes,
-                 arm_sources: tuple[InputPortIndex, InputPortIndex], forced_grasp: str | None = None):
+                 arm_sources: tuple[InputPortIndex, InputPortIndex], forced_grasp: str | None = None,
+                 estimate_error: EstimateError | None = None):
         """
         Args:
             plant, scene_graph, wam, hand_bodies, times: as GraspExecutor's.
             q_start: the arm's joint angles at time 0 (the exploration's start), rad.
             arm_sources: the arm switch's input port indices of (the camera motion, this system).
             forced_grasp: execute this grasp instead of the most resembling shape's (Fig. 6).
+            estimate_error: a known error added to the estimate before the grasp is computed from it.
         """
         if forced_grasp is not None:
             forced_grasp = GraspType.parse(forced_grasp).value
         self._forced_grasp = forced_grasp
+        self._estimate_error = estimate_error
         self._arm_sources = arm_sources
         super().__init__(plant, scene_graph, wam, hand_bodies, None, q_start, times)
         self._phase_port = self.DeclareVectorInputPort("exploration_phase", 1)
@@ -107,7 +114,7 @@ class CompliantGraspSupervisor(GraspExecutor):
             return dataclasses.replace(self._end(progress, t, OBJECT_NOT_FOUND), decision=decision)
         chosen = GRASP_OF_SHAPE[estimate.best_shape]
         executed = self._forced_grasp or chosen
-        plan = plan_compliant_grasp(executed, estimate.as_grasp_estimate())
+        plan = plan_compliant_grasp(executed, perturb_estimate(estimate.as_grasp_estimate(), self._estimate_error))
         decision = Decision(t, estimate, chosen, executed, plan)
         q_now = np.asarray(self._wam_state_port.Eval(context), float)[:7]
         try:
@@ -118,8 +125,8 @@ class CompliantGraspSupervisor(GraspExecutor):
 
 
 def AddCompliantGraspSupervisor(builder: DiagramBuilder, station, primitives, sequencer,
-                                q_start: np.ndarray, times: ExecutionTimes, forced_grasp: str | None = None
-                                ) -> CompliantGraspSupervisor:
+                                q_start: np.ndarray, times: ExecutionTimes, forced_grasp: str | None = None,
+                                estimate_error: EstimateError | None = None) -> CompliantGraspSupervisor:
     """Adds the supervisor and the arm switch, and connects them to the station, the primitives'
     estimator, the sequencer and the camera motion controller.
 
@@ -132,6 +139,7 @@ def AddCompliantGraspSupervisor(builder: DiagramBuilder, station, primitives, se
         q_start: the arm's joint angles at time 0, rad.
         times: the grasp sequence's timings (the scenario's protocol.execution).
         forced_grasp: execute this grasp instead of the chosen one.
+        estimate_error: a known error added to the estimate before the grasp is computed from it.
     """
     station_system = station.diagram
     switch = builder.AddNamedSystem("arm_command_switch", PortSwitch(14))
@@ -140,7 +148,7 @@ def AddCompliantGraspSupervisor(builder: DiagramBuilder, station, primitives, se
     plant = station.plant
     supervisor = builder.AddNamedSystem("supervisor", CompliantGraspSupervisor(
         plant, station.scene_graph, station.wam, plant.GetBodyIndices(station.hand), q_start, times,
-        (camera_port.get_index(), grasp_port.get_index()), forced_grasp))
+        (camera_port.get_index(), grasp_port.get_index()), forced_grasp, estimate_error))
     builder.Connect(primitives.camera_motion.GetOutputPort("wam.desired_state"), camera_port)
     builder.Connect(supervisor.GetOutputPort("wam.desired_state"), grasp_port)
     builder.Connect(supervisor.GetOutputPort("arm_source"), switch.get_port_selector_input_port())

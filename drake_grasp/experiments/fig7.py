@@ -155,76 +155,14 @@ def _read_plan(path: pathlib.Path, progress) -> dict | None:
 
 def reachable_grasps(plan: dict, obj: str, scenario_file: str = "", scenario_name: str = "default",
                      count: int = 3, object_options: dict | None = None) -> list[dict]:
-    """The `count` best of the plan's ranked candidates that the WAM can execute.
-
-    The planner moves a free hand (docs/design.md §4.6) and knows nothing of the arm: some of its best
-    grasps come from beyond the object, where the WAM cannot take the hand. As a user of GraspIt!
-    would, we execute the best grasps the arm can reach: pre-grasp and grasp poses solvable by
-    inverse kinematics with the object at its nominal pose. Each returned grasp dict gets its rank in
-    the planner's list ("planner_rank").
-    """
-    import numpy as np
-    from pydrake.math import RigidTransform
-
-    from drake_grasp.control.arm_motion import ArmKinematics, ReachError
-    from drake_grasp.grasps import planned_grasp
-    from drake_grasp.objects import resolve_user_object
-    from drake_grasp.station import DEFAULT_SCENARIO_FILE, MakeStation, load_scenario
-
-    scenario = load_scenario(scenario_file or DEFAULT_SCENARIO_FILE, scenario_name)
-    station = MakeStation(scenario, resolve_user_object(obj, **(object_options or {})), camera=False)
-    kinematics = ArmKinematics(station.plant, station.wam)
-    X_WO = station.X_WO_nominal()
-    q_start = np.asarray(scenario.protocol.start_configuration, float)
-    chosen = []
-    for rank, grasp in enumerate(plan["candidates"], start=1):
-        grasp_plan = planned_grasp(RigidTransform(np.asarray(grasp["X_OH"])), np.asarray(grasp["joint_angles"]), X_WO)
-        try:
-            q = kinematics.solve(grasp_plan.X_WP_pregrasp, q_start)
-            kinematics.solve(grasp_plan.X_WP_target, q)
-        except ReachError:
-            continue
-        chosen.append(dict(grasp, planner_rank=rank))
-        if len(chosen) == count:
-            break
-    return chosen
-
-
-def eigengrasp_trial(obj: str, seed: int, *, energy: str = "contact-quality", steps: int = 70_000,
-                     plan_seed: int = 0, rank: int = 1, scenario_file: str = "", scenario_name: str = "default",
-                     replay_html: str | None = None, object_options: dict | None = None):
-    """One trial of the compliance-agnostic method, as Fig. 7 runs it: plan with the Eigengrasp planner
-    (table loaded), execute its `rank`-th best grasp that the WAM can reach, judge with the same
-    runner, seeds and success test as the compliant grasps.
-
-    Returns (TrialRecord, the executed grasp as the planner gave it, or None if the arm cannot reach
-    `rank` of the planner's grasps: then the record fails with UNREACHABLE). The record's grasp label
-    is the one Fig. 7 gives the same plan's grasp ("energy/steps/seedS#rank").
-    """
-    from pydrake.math import RigidTransform
-
-    from baselines.eigengrasp.planner import plan_eigengrasp
-    from drake_grasp.control.arm_motion import UNREACHABLE
-    from drake_grasp.grasps import planned_grasp
+    """The `count` best of the plan's ranked candidates that the WAM can execute, with their
+    "planner_rank" (`trial.reachable_grasps`, for the object and scenario named here)."""
     from drake_grasp.objects import resolve_user_object
     from drake_grasp.station import DEFAULT_SCENARIO_FILE, load_scenario
-    from drake_grasp.trial import TrialRecord, run_trial
+    from drake_grasp.trial import reachable_grasps as reachable
 
-    spec = resolve_user_object(obj, **(object_options or {}))
     scenario = load_scenario(scenario_file or DEFAULT_SCENARIO_FILE, scenario_name)
-    plan = plan_eigengrasp(spec, max_steps=steps, seed=plan_seed, energy_name=energy, table=True).to_dict()
-    reachable = reachable_grasps(plan, obj, scenario_file, scenario_name, count=rank, object_options=object_options)
-    label = f"{energy}/{steps}/seed{plan_seed}#{rank}"
-    if len(reachable) < rank:
-        return TrialRecord(object=spec.name, method="eigengrasp", grasp=label, seed=seed, success=False,
-                           failure=UNREACHABLE, detail=f"the arm can reach {len(reachable)} of the planner's "
-                           f"{len(plan['candidates'])} grasps, fewer than rank {rank}"), None
-    grasp = reachable[rank - 1]
-    X_OH = RigidTransform(np.asarray(grasp["X_OH"], float))
-    q = np.asarray(grasp["pregrasp_joint_angles"], float)
-    record = run_trial(scenario, spec, lambda X_WO, object_spec: planned_grasp(X_OH, q, X_WO), seed=seed,
-                       method="eigengrasp", grasp=label, replay_html=replay_html)
-    return record, grasp
+    return reachable(plan, scenario, resolve_user_object(obj, **(object_options or {})), count)
 
 
 def eigengrasp_specs(plans: dict, config: Fig7Config, scenario_file="", scenario_name="default"):

@@ -3,8 +3,8 @@
 A results file keeps records across runs, so a rerun must never reuse a record computed from other
 inputs. Each record therefore carries a fingerprint of its inputs beside its key (object, method,
 grasp, seed): the resolved scenario (after the scenario file's overrides), the perception
-configuration, the object's content, the planned grasp (for planner trials) and the package version
-(which stands for the code and the models it ships). The trial protocol's timings and thresholds
+configuration, the object's content, the planned grasp (for planner trials), an estimate error
+(where a trial adds one) and the package version (which stands for the code and the models it ships). The trial protocol's timings and thresholds
 are part of the scenario (`Scenario.protocol`), so they enter with it. Rows whose fingerprint differs
 from the current one are kept in the file but never used: each fingerprint has its own results, and
 changing a parameter back finds its old records again.
@@ -104,14 +104,23 @@ def scenario_fingerprint(scenario_file: str = "", scenario_name: str = "default"
 
 
 def trial_fingerprint(spec, scenario_print: str | None = None, object_print: str | None = None) -> str:
-    """The fingerprint of one trial (`runner.TrialSpec`): scenario and perception, object content,
-    the planned grasp (planner trials) and the package version. The method, grasp and seed are the
-    record's key and not repeated here. Precomputed scenario and object fingerprints may be given."""
+    """The fingerprint of one trial (`trial.TrialSpec`): scenario and perception, object content,
+    the planned grasp (planner trials) and the package version; and, only where a spec has them (so
+    that every other record keeps its fingerprint), an estimate error and the settings of a planner
+    trial that plans itself. The method, grasp and seed are the record's key and not repeated here.
+    Precomputed scenario and object fingerprints may be given."""
     if scenario_print is None:
         scenario_print = scenario_fingerprint(spec.scenario_file, spec.scenario_name)
     if object_print is None:
-        object_print = object_fingerprint(spec.object)
-    return digest("trial", drake_grasp.__version__, scenario_print, object_print, spec.planned)
+        object_print = object_fingerprint(spec.object, **spec.object_options())
+    parts = ["trial", drake_grasp.__version__, scenario_print, object_print, spec.planned]
+    if spec.has_estimate_error:
+        parts.append({"estimate_error": spec.estimate_error})
+    if spec.method == "eigengrasp" and spec.planned is None:
+        from drake_grasp.trial.spec import PlannerSettings
+
+        parts.append({"planner": spec.planner or PlannerSettings()})
+    return digest(*parts)
 
 
 def sweep_fingerprint(name: str, *parts) -> str:

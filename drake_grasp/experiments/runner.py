@@ -1,8 +1,9 @@
 """Runs many trials through an executor (local processes or Ray), writing each record as it finishes.
 
-A trial is described by plain data (a `TrialSpec`): the worker builds its own station and Diagram
-(Drake Diagrams and Contexts do not pickle), runs it, and returns the record as a plain dict. Records
-go to a resumable CSV (`results.ResultsTable`) keyed by (fingerprint, object, method, grasp, seed):
+A trial is described by plain data (a `trial.TrialSpec`): the worker runs it through the trial
+layer's one entry point (`trial.run`, which builds its own station and Diagram: Drake Diagrams and
+Contexts do not pickle) and turns its record into a CSV row, a plain dict. Records go to a
+resumable CSV (`results.ResultsTable`) keyed by (fingerprint, object, method, grasp, seed):
 rerunning the same sweep after an interruption computes only the missing trials, and a rerun with
 other inputs (scenario, object file, ...: `fingerprint.trial_fingerprint`) computes its own.
 """
@@ -17,6 +18,10 @@ import time
 
 from drake_grasp.experiments.executors import Executor, LocalExecutor
 from drake_grasp.experiments.results import ResultsTable
+from drake_grasp.trial.spec import TrialSpec  # re-exported: `runner.TrialSpec` keeps working
+
+__all__ = ["TRIAL_FIELDS", "TRIAL_KEY", "TRIAL_TYPES", "TrialSpec", "fingerprints", "run_one", "run_trials",
+           "select", "spec_key", "trial_table"]
 
 TRIAL_FIELDS = [
     "fingerprint", "object", "method", "grasp", "seed", "success", "failure", "lift", "slip_distance", "slip_angle",
@@ -59,39 +64,6 @@ def spec_key(spec: "TrialSpec", fingerprint: str) -> tuple:
     return (fingerprint, spec.object, spec.method, spec.grasp, spec.seed)
 
 
-@dataclasses.dataclass(frozen=True)
-class TrialSpec:
-    """One trial as plain data.
-
-    Attributes:
-        object: catalogue name, primitive or mesh path.
-        method: "oracle" (compliant grasp from ground truth), "compliant" (from the camera), or
-            "eigengrasp" (a planned grasp, given in `planned`).
-        grasp: "spherical" | "cylindrical" | "box" for compliant methods ("" with "compliant": the
-            algorithm's own choice); a label for planned grasps.
-        seed: the trial's seed (its variation; shared by every method).
-        scenario_file, scenario_name: the station scenario.
-        planned: for planned grasps: {"X_OH": 4x4 list, "joint_angles": 8 floats}.
-        scale, largest_component: a mesh file's options (`objects.resolve_user_object`).
-    """
-
-    object: str
-    method: str
-    grasp: str
-    seed: int
-    scenario_file: str = ""
-    scenario_name: str = "default"
-    planned: dict | None = None
-    scale: float = 1.0
-    largest_component: bool = False
-
-    def object_options(self) -> dict:
-        """The mesh options that differ from their defaults (keyword arguments)."""
-        from drake_grasp.objects import mesh_options
-
-        return mesh_options(self.scale, self.largest_component)
-
-
 def run_one(spec: TrialSpec, replay_html: str | None = None) -> dict:
     """Runs one trial in this process; returns its record as a dict of CSV-ready values. With
     `replay_html`, the trial also writes a Meshcat replay there (the record is the same)."""
@@ -102,42 +74,22 @@ def run_one(spec: TrialSpec, replay_html: str | None = None) -> dict:
 
 
 def _run_one(spec: TrialSpec, replay_html: str | None = None) -> dict:
-    from drake_grasp.grasps import oracle_estimate, plan_compliant_grasp, planned_grasp
-    from drake_grasp.objects import resolve_user_object
-    from drake_grasp.station import DEFAULT_SCENARIO_FILE, load_scenario
-    from drake_grasp.trial import run_compliant_trial, run_trial
+    from drake_grasp import trial
 
-    scenario = load_scenario(spec.scenario_file or DEFAULT_SCENARIO_FILE, spec.scenario_name)
-    obj = resolve_user_object(spec.object, **spec.object_options())
+    scenario, obj = trial.resolve(spec)
+    record = trial.run(spec, replay_html, scenario=scenario, obj=obj)
+    return _row(spec, record, _extra(spec, record, scenario, obj))
+
+
+def _extra(spec: TrialSpec, record, scenario, obj) -> dict:
+    """The row's `extra` cell: what the method adds to the record's common fields."""
     if spec.method == "compliant":
-        # An empty grasp runs the algorithm's own choice; a named one is forced (Fig. 6's protocol).
-        record = run_compliant_trial(scenario, obj, seed=spec.seed, grasp=spec.grasp or None,
-                                     replay_html=replay_html)
-        return _row(spec, record, {"resemblance": record.resemblances, "chosen": record.chosen_grasp,
-                                   "estimate_errors": record.estimate_errors,
-                                   "scenario": spec.scenario_name,
-                                   "segmentation": scenario.perception.segmentation.method})
+        return {"resemblance": record.resemblances, "chosen": record.chosen_grasp,
+                "estimate_errors": record.estimate_errors, "scenario": spec.scenario_name,
+                "segmentation": scenario.perception.segmentation.method}
     if spec.method == "oracle":
-        def plan(X_WO, object_spec):
-            return plan_compliant_grasp(spec.grasp, oracle_estimate(X_WO, object_spec))
-
-        extra = {"truth_class": obj.closest_primitive}
-    elif spec.method == "eigengrasp":
-        import numpy as np
-        from pydrake.math import RigidTransform
-
-        X_OH = RigidTransform(np.asarray(spec.planned["X_OH"], float))
-        q = np.asarray(spec.planned["joint_angles"], float)
-
-        def plan(X_WO, object_spec):
-            return planned_grasp(X_OH, q, X_WO)
-
-        extra = dict(spec.planned)
-    else:
-        raise ValueError(f"unknown method '{spec.method}'")
-    record = run_trial(scenario, obj, plan, seed=spec.seed, method=spec.method, grasp=spec.grasp,
-                       replay_html=replay_html)
-    return _row(spec, record, extra)
+        return {"truth_class": obj.closest_primitive}
+    return dict(record.planned_grasp or {})  # eigengrasp: the planned grasp executed
 
 
 def _row(spec: TrialSpec, record, extra: dict) -> dict:

@@ -1,12 +1,11 @@
-"""One grasp trial: set up, execute a grasp plan, judge it with the paper's success test, record.
+"""Executing a grasp and judging it: the one simulate-and-judge step every method goes through.
 
-Every method runs through the same simulate-and-judge step (`_execute`), so all are executed by the
-same arm, hand controller and timings, and judged by the same test (docs/design.md §4.7): `run_trial` for a
-given grasp plan (compliant grasps from ground truth, grasps planned by the Eigengrasp baseline), and
-`run_compliant_trial` for the paper's algorithm, which explores with the wrist camera and decides its
-grasp inside the same simulation (`control.supervisor`). In every trial:
+Every method is executed by the same arm, hand controller and timings, and judged by the same test
+(docs/design.md §4.7). `run_trial` runs a given grasp plan (a compliant grasp from the ground truth, a
+grasp planned by the Eigengrasp baseline); the camera-driven algorithm (`trial.compliant`) builds its
+own Diagram and hands it to the same `execute`. In every trial:
 
-* the object is placed with the trial's seeded variation (position, yaw, friction);
+* the object is placed with the trial's seeded variation (position, yaw, friction): `apply_variation`;
 * the executor moves to the pre-grasp pose, approaches (guarded), closes, lifts 10 cm and holds 10 s;
 * success = the object is off the table at the end and moved less than 1 cm and 10 degrees relative
   to the palm during the hold.
@@ -29,60 +28,13 @@ from drake_grasp.control.arm_motion import UNREACHABLE, ReachError
 from drake_grasp.control.grasp_executor import ConnectGraspExecutor, GraspExecutor, GraspPhase
 from drake_grasp.grasps import GraspPlan
 from drake_grasp.objects import ObjectSpec
-from drake_grasp.primitives.estimate import OBJECT_NOT_FOUND
 from drake_grasp.protocol import TrialVariation
 from drake_grasp.simulation import AddReplay, StartSimulation, recording
 from drake_grasp.station import MakeStation, Scenario
-from drake_grasp.success import DROPPED_DURING_LIFT, MISSED, SLIPPED_DURING_HOLD, GraspObservation, judge_grasp
-
-# Failure reasons (the record's `failure` field): those of the success test, and a simulation that
-# could not be carried out.
-SIMULATION_ERROR = "simulation error"
-# Every failure reason, including the two that end a sequence before the grasp: the camera never saw
-# the object, and the arm cannot reach the grasp.
-FAILURES = (MISSED, DROPPED_DURING_LIFT, SLIPPED_DURING_HOLD, OBJECT_NOT_FOUND, UNREACHABLE, SIMULATION_ERROR)
+from drake_grasp.success import GraspObservation, judge_grasp
+from drake_grasp.trial.record import SIMULATION_ERROR, TrialRecord
 
 PlanFunction = Callable[[RigidTransform, ObjectSpec], GraspPlan]
-
-
-@dataclasses.dataclass
-class TrialRecord:
-    """Everything a trial measured. Distances in m, angles in rad, times in s."""
-
-    object: str
-    method: str
-    grasp: str
-    seed: int
-    success: bool
-    failure: str  # "" on success
-    lift: float = float("nan")  # object's rise above its resting height at the end
-    slip_distance: float = float("nan")  # in the palm frame, over the hold
-    slip_angle: float = float("nan")
-    contacts_after_close: str = ""  # hand links touching the object when the lift starts
-    contacts_at_end: str = ""
-    finger_angles: list = dataclasses.field(default_factory=list)  # [spread, prox 1..3, distal 1..3]
-    breakaway: list = dataclasses.field(default_factory=list)
-    breakaway_angles: list = dataclasses.field(default_factory=list)  # proximal angle at breakaway (nan: none)
-    approach_stopped_on_contact: bool = False
-    estimate_source: str = ""
-    variation: dict = dataclasses.field(default_factory=dict)
-    sim_time: float = 0.0
-    wall_time: float = 0.0
-    detail: str = ""
-    # Camera-driven (compliant) trials: what the visual primitives measured and chose.
-    resemblances: dict = dataclasses.field(default_factory=dict)
-    chosen_grasp: str = ""
-    estimate: dict = dataclasses.field(default_factory=dict)
-    estimate_errors: dict = dataclasses.field(default_factory=dict)
-
-    def summary(self) -> str:
-        verdict = "SUCCESS" if self.success else f"FAILED ({self.failure})"
-        slip = (f"slip {self.slip_distance * 1000:.1f} mm / {math.degrees(self.slip_angle):.1f} deg"
-                if math.isfinite(self.slip_distance) else "no hold")
-        lift = f"lift {self.lift * 100:.1f} cm" if math.isfinite(self.lift) else "no lift"
-        return (f"{self.object} {self.method}/{self.grasp} seed {self.seed}: {verdict}; {lift}; {slip}; "
-                f"touching [{self.contacts_at_end or self.contacts_after_close}]; "
-                f"{self.sim_time:.1f} s simulated in {self.wall_time:.1f} s")
 
 
 def apply_variation(scenario: Scenario, spec: ObjectSpec, variation: TrialVariation) -> tuple[Scenario, ObjectSpec]:
@@ -107,7 +59,7 @@ def run_trial(scenario: Scenario, spec: ObjectSpec, plan_function: PlanFunction,
         scenario: the station scenario (its protocol gives the variation, thresholds and timings).
         spec: the object (placed as scenario.object says, then varied by the seed).
         plan_function: (X_WO of the varied object, its spec) -> GraspPlan, for oracle and planner
-            methods (the compliance-centric algorithm decides its grasp itself: `run_compliant_trial`).
+            methods (the compliance-centric algorithm decides its grasp itself: `compliant.run_compliant_trial`).
         seed: the trial's seed: it fixes the variation, the same for every method.
         method, grasp: names for the record.
         replay_html: write a Meshcat replay there.
@@ -136,82 +88,24 @@ def run_trial(scenario: Scenario, spec: ObjectSpec, plan_function: PlanFunction,
     station_system = builder.AddNamedSystem("station", station.diagram)
     builder.AddNamedSystem("executor", executor)
     ConnectGraspExecutor(builder, station_system, executor)
-    _execute(builder, station, executor, protocol, q_start, record, protocol.execution.hold_time + 60.0, replay_html,
+    execute(builder, station, executor, protocol, q_start, record, protocol.execution.hold_time + 60.0, replay_html,
              monitor_period)
     record.wall_time = time.perf_counter() - wall_start
     return record
 
 
-def run_compliant_trial(scenario: Scenario, spec: ObjectSpec, *, seed: int, grasp: str | None = None,
-                        replay_html: str | None = None, perception_config=None,
-                        monitor_period: float = 0.05) -> TrialRecord:
-    """The compliance-centric algorithm, one trial, in one Diagram: explore, decide, grasp.
-
-    The wrist camera starts above the object's *nominal* placement, looking down; the object is placed
-    with the trial's seeded variation. The visual primitives explore it and estimate its centre, axes,
-    size and the three shape resemblances; the supervisor (`control.supervisor`) then executes the
-    grasp of the most resembling shape (or `grasp`, forced by the caller, for Fig. 6's all-grasps
-    protocol), computed from the estimate only, with the same executor, timings and success test as
-    every other method. No ground truth enters the decision or the grasp; the record keeps the
-    estimate and, for evaluation, its errors against the object's true pose when the decision was made.
-    """
-    from drake_grasp.control.supervisor import AddCompliantGraspSupervisor
-    from drake_grasp.perception import (AddExplorationSequencer, AddVisualPrimitives, compare, ground_truth,
-                                        start_camera_pose, start_configuration)
-
-    wall_start = time.perf_counter()
-    config = perception_config or scenario.perception
-    protocol = scenario.protocol
-    variation = TrialVariation.draw(seed, protocol)
-    nominal = np.array([scenario.object.x, scenario.object.y, 0.0])
-    scenario, spec = apply_variation(scenario, spec, variation)
-    record = TrialRecord(object=spec.name, method="compliant", grasp=grasp or "", seed=seed, success=False,
-                         failure="", variation=dataclasses.asdict(variation), estimate_source="camera")
-    station = MakeStation(scenario, spec, camera=True)
-    builder = DiagramBuilder()
-    builder.AddNamedSystem("station", station.diagram)
-    primitives = AddVisualPrimitives(builder, station, config, connect_arm=False)
-    sequencer = AddExplorationSequencer(builder, primitives, config)
-    q_start = start_configuration(station, start_camera_pose(nominal, config, config.depth.table_height), config)
-    supervisor = AddCompliantGraspSupervisor(builder, station, primitives, sequencer, q_start,
-                                             protocol.execution, grasp)
-
-    def start_camera_motion(context):
-        motion = primitives.camera_motion
-        motion.SetInitialPositions(motion.GetMyMutableContextFromRoot(context), q_start)
-
-    run = _execute(builder, station, supervisor, protocol, q_start, record,
-                   config.sequencer.total_time + protocol.execution.hold_time + 60.0, replay_html, monitor_period,
-                   start_camera_motion)
-    decision = run.decision
-    if decision is not None:
-        estimate = decision.estimate
-        record.grasp = decision.executed
-        record.chosen_grasp = decision.chosen
-        record.resemblances = dict(estimate.resemblances)
-        record.estimate = {k: v for k, v in estimate.to_dict().items() if k not in ("evidence", "timings")}
-        record.estimate["decided_at"] = decision.time
-        if estimate.found and run.X_WO_decision is not None:
-            errors = compare(estimate, ground_truth(spec, run.X_WO_decision))
-            record.estimate_errors = {
-                "centre": errors.centre, "depth": errors.depth, "axis_deg": errors.axis_deg,
-                "extents": [float(e) for e in errors.extents], "shape_correct": errors.shape_correct}
-    record.wall_time = time.perf_counter() - wall_start
-    return record
-
-
 @dataclasses.dataclass
-class _Run:
-    """What `_execute` saw besides the record: the supervisor's decision (None for a given plan) and
+class Executed:
+    """What `execute` saw besides the record: the supervisor's decision (None for a given plan) and
     the object's true pose when the grasp was decided (for evaluating the estimate)."""
 
     decision: object = None
     X_WO_decision: RigidTransform | None = None
 
 
-def _execute(builder: DiagramBuilder, station, executor: GraspExecutor, protocol, q_start: np.ndarray,
+def execute(builder: DiagramBuilder, station, executor: GraspExecutor, protocol, q_start: np.ndarray,
              record: TrialRecord, time_limit: float, replay_html: str | None, monitor_period: float,
-             initialize=None) -> _Run:
+             initialize=None) -> Executed:
     """Builds the Diagram in `builder`, simulates the executor's sequence to its end, and judges it
     with the success test, filling `record` (failure, lift, slip, contacts, fingers, sim_time).
 
@@ -237,7 +131,7 @@ def _execute(builder: DiagramBuilder, station, executor: GraspExecutor, protocol
     palm = plant.GetFrameByName("bh_palm")
     table_bodies = set(int(b) for b in plant.GetBodyIndices(plant.GetModelInstanceByName("table")))
     X_WO = station.X_WO_nominal()  # the object at rest on the table: the lift is measured from it
-    run = _Run()
+    run = Executed()
 
     def X_PO() -> RigidTransform:
         return palm.CalcPoseInWorld(plant_context).inverse() @ object_body.EvalPoseInWorld(plant_context)

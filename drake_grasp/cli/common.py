@@ -1,0 +1,172 @@
+"""What the `drake-grasp` commands share: their common options, the checks of their input (each a
+one-line UsageError, exit code 2, before any work starts) and how a single run's result is printed
+and saved."""
+
+import argparse
+import json
+import math
+import os
+import pathlib
+
+
+class UsageError(ValueError):
+    """Bad input from the command line: reported in one line, exit code 2."""
+
+
+def add_mesh_options(p: argparse.ArgumentParser) -> None:
+    """--scale and --largest-component, for every command that takes --object."""
+    p.add_argument("--scale", type=float, default=1.0, metavar="S",
+                   help="multiply a mesh file's coordinates by S (e.g. 0.001 for a file in millimetres)")
+    p.add_argument("--largest-component", action="store_true",
+                   help="a mesh of separate, non-touching solids: keep the largest (else an error)")
+
+
+def resolve_object_arg(args):
+    """The --object of a single-run command, with its mesh options."""
+    from drake_grasp.objects import resolve_user_object
+
+    return resolve_user_object(args.object, scale=args.scale, largest_component=args.largest_component)
+
+
+def add_common(p: argparse.ArgumentParser, scenario: bool = True, seed: bool = True) -> None:
+    if seed:  # (fig4's quasi-static sweep is deterministic: it has no seed)
+        p.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
+    p.add_argument("--out", metavar="DIR", help="directory for result files")
+    p.add_argument("--json", action="store_true", help="print one JSON object instead of a line")
+    if scenario:
+        p.add_argument("--scenario", metavar="FILE.yaml",
+                       help="scenario file (default: diagrams/station.scenarios.yaml)")
+        p.add_argument("--scenario-name", default="default", help="scenario in that file (default: default)")
+
+
+def add_executor_args(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--workers", type=int,
+                   help="worker processes, or the CPUs of the local Ray instance (default: all cores)")
+    p.add_argument("--executor", default="local", metavar="local|ray",
+                   help="where trials run: local processes (default) or Ray tasks (pip install -e '.[ray]'); "
+                   "the results are the same")
+    p.add_argument("--ray-address", metavar="ADDR",
+                   help="join this Ray cluster (auto, HOST:PORT or ray://HOST:10001) instead of starting a "
+                   "local Ray instance with --workers CPUs; needs --executor ray")
+
+
+def load_scenario_arg(args):
+    from drake_grasp.station import DEFAULT_SCENARIO_FILE, load_scenario
+
+    return load_scenario(args.scenario or DEFAULT_SCENARIO_FILE, args.scenario_name)
+
+
+def emit(args, record: dict, filename: str, summary: str, replay: pathlib.Path | None) -> None:
+    """Prints a single run's record (one JSON object with --json, else the summary and where the
+    replay went), then writes it to --out (atomically): if writing fails, the result is still shown.
+
+    Raises:
+        RuntimeError: (one line, exit code 1) if the record could not be written.
+    """
+    if args.json:
+        print(json.dumps(jsonable(record)), flush=True)
+    else:
+        print(summary, flush=True)
+        if replay:
+            print(f"replay: {replay}", flush=True)
+    if args.out:
+        save_record(pathlib.Path(args.out), filename, record)
+
+
+def save_record(out: pathlib.Path, filename: str, record: dict) -> None:
+    """Writes a record as JSON to out/filename; RuntimeError (one line) if that fails."""
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+        write_json_atomically(out / filename, record)
+    except OSError as e:
+        raise RuntimeError(f"could not write {out / filename}: {e.strerror or e}") from None
+
+
+def check_out_dir(path: str | os.PathLike, option: str = "--out") -> pathlib.Path:
+    """An output folder that can be written: it is a folder, or can be created as one (its nearest
+    existing parent is a writable folder). UsageError (one line) otherwise. Nothing is created."""
+    p = pathlib.Path(path)
+    if p.exists():
+        if not p.is_dir():
+            raise UsageError(f"{option} {path}: exists and is not a directory")
+        if not os.access(p, os.W_OK | os.X_OK):
+            raise UsageError(f"{option} {path}: directory is not writable")
+        return p
+    parent = p.absolute().parent
+    while not parent.exists():
+        parent = parent.parent
+    if not parent.is_dir():
+        raise UsageError(f"{option} {path}: {parent} is not a directory")
+    if not os.access(parent, os.W_OK | os.X_OK):
+        raise UsageError(f"{option} {path}: cannot create it ({parent} is not writable)")
+    return p
+
+
+def check_seed(seed: int, trials: int = 1) -> None:
+    """A seed in [0, 2^32); a sweep of `trials` trials uses seed .. seed + trials - 1, all in range."""
+    if not 0 <= seed < 2**32:
+        raise UsageError(f"--seed must be in [0, 2^32), got {seed}")
+    if seed + trials - 1 >= 2**32:
+        raise UsageError(f"--seed {seed} with {trials} trials uses seeds up to {seed + trials - 1}, past "
+                         f"2^32 - 1; use --seed <= {2**32 - trials}")
+
+
+def single_run_inputs(args) -> tuple:
+    """(replay path or None, scenario, object) of a single-run command (demo, trial, resemble): the
+    seed, the replay file name, the scenario and the object checked, each a one-line error."""
+    check_seed(args.seed)
+    if args.out:
+        check_out_dir(args.out)
+    replay = writable_file(args.replay, ".html") if args.replay else None
+    return replay, load_scenario_arg(args), resolve_object_arg(args)
+
+
+def writable_file(path: str, suffix: str) -> pathlib.Path:
+    """A file name that can be written (--replay): the right suffix, not a folder, in a writable
+    folder that exists, and writable if it exists. UsageError (one line) otherwise."""
+    p = pathlib.Path(path)
+    if p.suffix.lower() != suffix:
+        raise UsageError(f"{path}: expected a {suffix} file name")
+    parent = p.absolute().parent
+    if not parent.is_dir():
+        raise UsageError(f"{path}: directory {p.parent} does not exist")
+    if p.is_dir():
+        raise UsageError(f"{path}: is a directory")
+    if not os.access(parent, os.W_OK | os.X_OK) or (p.exists() and not os.access(p, os.W_OK)):
+        raise UsageError(f"{path}: cannot be written (permission denied)")
+    return p
+
+
+
+def check_planner_args(steps: str, energy: str) -> int:
+    """The planner's step limit as an int; UsageError for a bad step limit or energy."""
+    from baselines.eigengrasp.annealing import K0
+    from baselines.eigengrasp.energy import ENERGIES
+
+    try:
+        steps = int(steps)
+    except ValueError:
+        raise UsageError(f"--steps must be an integer > {K0}, got {steps!r}") from None
+    if steps <= K0:
+        raise UsageError(f"--steps must be > {K0} (GraspIt!'s step counter starts at {K0}), got {steps}")
+    if energy not in ENERGIES:
+        raise UsageError(f"unknown --energy {energy!r} (choose from {', '.join(ENERGIES)})")
+    return steps
+
+
+
+def jsonable(value):
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    if isinstance(value, dict):
+        return {k: jsonable(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [jsonable(v) for v in value]
+    return value
+
+
+def write_json_atomically(path: pathlib.Path, record: dict) -> None:
+    from drake_grasp.experiments.results import write_atomically
+
+    write_atomically(path, json.dumps(jsonable(record), indent=2) + "\n")
+

@@ -1,0 +1,89 @@
+"""One trial as plain data (`TrialSpec`): what to grasp, by which method, with which seed, where.
+
+A spec is all a worker needs to run a trial (`trial.run`): Drake Diagrams and Contexts do not pickle,
+so every worker builds its own from the spec. A spec also decides its record's fingerprint
+(`experiments.fingerprint.trial_fingerprint`).
+"""
+
+import dataclasses
+
+from drake_grasp.estimate_error import EstimateError
+
+# The methods a trial can run: a compliant grasp from the ground truth, the compliance-centric
+# algorithm (camera), the Eigengrasp planner's grasp.
+METHODS = ("oracle", "compliant", "eigengrasp")
+
+
+@dataclasses.dataclass(frozen=True)
+class PlannerSettings:
+    """How a planner trial plans when its spec has no planned grasp yet (the command line's
+    `trial --method eigengrasp`; Fig. 7 plans once per object and gives each trial its grasp).
+
+    Attributes:
+        energy: the planner's energy, "contact" or "contact-quality".
+        steps: its step limit (GraspIt!'s counter, which starts at 30,000).
+        seed: its random seed.
+        rank: execute the rank-th best of its grasps that the arm can reach (1 = the best).
+    """
+
+    energy: str = "contact-quality"
+    steps: int = 70_000
+    seed: int = 0
+    rank: int = 1
+
+    @property
+    def label(self) -> str:
+        """The grasp label of such a trial, as Fig. 7 labels the same plan's grasp: "energy/steps/seedS#rank"."""
+        return f"{self.energy}/{self.steps}/seed{self.seed}#{self.rank}"
+
+
+@dataclasses.dataclass(frozen=True)
+class TrialSpec:
+    """One trial as plain data.
+
+    Attributes:
+        object: catalogue name, primitive or mesh path.
+        method: "oracle" (compliant grasp from ground truth), "compliant" (from the camera), or
+            "eigengrasp" (a planned grasp: given in `planned`, or planned in the trial with `planner`).
+        grasp: "spherical" | "cylindrical" | "box" for compliant methods ("" with "compliant": the
+            algorithm's own choice); a label for planned grasps.
+        seed: the trial's seed (its variation; shared by every method).
+        scenario_file, scenario_name: the station scenario.
+        planned: for planned grasps: {"X_OH": 4x4 list, "joint_angles": 8 floats} (and what else the
+            planner said of it: epsilon, energy, planner_rank).
+        scale, largest_component: a mesh file's options (`objects.resolve_user_object`).
+        estimate_error: a known error added to the estimate the grasp is computed from (issue 15's
+            capture regions; `estimate_error.EstimateError`): for "oracle" the ground-truth estimate,
+            for "compliant" the camera's; for "eigengrasp" the object pose the planned hand pose is
+            expressed against (X_WH = X_WO_erred X_OH; no size error: the planner has the exact model).
+        planner: for "eigengrasp" with no `planned` grasp: plan in the trial with these settings
+            (default `PlannerSettings()`).
+    """
+
+    object: str
+    method: str
+    grasp: str
+    seed: int
+    scenario_file: str = ""
+    scenario_name: str = "default"
+    planned: dict | None = None
+    scale: float = 1.0
+    largest_component: bool = False
+    estimate_error: EstimateError | None = None
+    planner: PlannerSettings | None = None
+
+    def __post_init__(self):
+        error = self.estimate_error
+        if self.method == "eigengrasp" and error is not None and error.size_scale != 1:
+            raise ValueError("a size error does not apply to the Eigengrasp planner (it has the exact model)")
+
+    def object_options(self) -> dict:
+        """The mesh options that differ from their defaults (keyword arguments)."""
+        from drake_grasp.objects import mesh_options
+
+        return mesh_options(self.scale, self.largest_component)
+
+    @property
+    def has_estimate_error(self) -> bool:
+        """Whether the spec adds a (non-zero) error to the estimate."""
+        return self.estimate_error is not None and not self.estimate_error.is_zero
