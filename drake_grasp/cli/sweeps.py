@@ -123,7 +123,7 @@ def add_reproduce(sub) -> None:
     reproduce.set_defaults(run=_run_reproduce)
 
 
-def _check_sweep_args(args):
+def check_sweep_args(args):
     """Rejects bad sweep arguments before any work starts; returns the executor the sweep runs on
     (a context manager: Ray, if started, is shut down on leaving it)."""
     from drake_grasp.experiments.executors import EXECUTORS, make_executor
@@ -150,12 +150,12 @@ def _check_sweep_args(args):
     return make_executor(args.executor, args.workers, args.ray_address)
 
 
-def _scenario_args(args) -> tuple[str, str]:
+def scenario_args(args) -> tuple[str, str]:
     load_scenario_arg(args)  # reject a bad scenario before any worker starts
     return (str(pathlib.Path(args.scenario).resolve()) if args.scenario else ""), args.scenario_name
 
 
-def _objects_arg(args, default: tuple[str, ...]) -> tuple[str, ...]:
+def objects_arg(args, default: tuple[str, ...]) -> tuple[str, ...]:
     """--objects as a tuple (each resolved once here, with the mesh options, so that a bad one is a
     one-line error before any worker starts), or `default`. `--scale` and `--largest-component`
     apply to the mesh files among them; given with no mesh file at all, they are an error."""
@@ -183,7 +183,7 @@ def _run_fig4(args) -> int:
     from drake_grasp.experiments import fig4
     from drake_grasp.experiments.lock import results_lock
 
-    executor = _check_sweep_args(args)
+    executor = check_sweep_args(args)
     config = fig4.Fig4Config.quick() if args.quick else fig4.Fig4Config.full()
     out = check_out_dir(args.out or args.out_default)
     start = time.perf_counter()
@@ -210,9 +210,9 @@ def _run_fig6(args) -> int:
     from drake_grasp.experiments import fig6
     from drake_grasp.objects import PAPER_OBJECTS
 
-    executor = _check_sweep_args(args)
-    scenario_file, scenario_name = _scenario_args(args)
-    objects = _objects_arg(args, fig6.QUICK_OBJECTS if args.quick else PAPER_OBJECTS)
+    executor = check_sweep_args(args)
+    scenario_file, scenario_name = scenario_args(args)
+    objects = objects_arg(args, fig6.QUICK_OBJECTS if args.quick else PAPER_OBJECTS)
     trials = args.trials or (2 if args.quick else 10)
     config = fig6.Fig6Config(objects=tuple(objects), trials=trials, seed=args.seed, method=args.method,
                              scale=args.scale, largest_component=args.largest_component)
@@ -234,14 +234,14 @@ def _run_fig6(args) -> int:
 def _run_fig7(args) -> int:
     from drake_grasp.experiments import fig7
 
-    executor = _check_sweep_args(args)
+    executor = check_sweep_args(args)
     check_planner_args(str(args.steps), args.energy)
-    scenario_file, scenario_name = _scenario_args(args)
+    scenario_file, scenario_name = scenario_args(args)
     fig6_dir = pathlib.Path(args.fig6)
     if fig6_dir.exists() and not fig6_dir.is_dir():
         raise UsageError(f"--fig6 {args.fig6}: exists and is not a directory")
     trials = args.trials or (2 if args.quick else 10)
-    config = fig7.Fig7Config(objects=_objects_arg(args, fig7.QUICK_OBJECTS if args.quick else fig7.OBJECTS),
+    config = fig7.Fig7Config(objects=objects_arg(args, fig7.QUICK_OBJECTS if args.quick else fig7.OBJECTS),
                              trials=trials,
                              seed=args.seed, steps=args.steps, energy=args.energy,
                              compliant_method=args.compliant_method, scale=args.scale,
@@ -266,8 +266,8 @@ def _run_fig7(args) -> int:
 def _run_novel(args) -> int:
     from drake_grasp.experiments import novel
 
-    executor = _check_sweep_args(args)
-    scenario_file, scenario_name = _scenario_args(args)
+    executor = check_sweep_args(args)
+    scenario_file, scenario_name = scenario_args(args)
     if args.count is not None and args.count < 1:
         raise UsageError(f"--count must be >= 1, got {args.count}")
     if not 0 <= args.object_seed < 2**32:
@@ -295,7 +295,7 @@ def _run_novel(args) -> int:
 def _run_reproduce(args) -> int:
     from drake_grasp.experiments import reproduce
 
-    executor = _check_sweep_args(args)
+    executor = check_sweep_args(args)
     out = check_out_dir(args.out or ("out/reproduce-quick" if args.quick else "out/reproduce"))
     with executor:
         report, claims, wall = reproduce.run(out, args.quick, seed=args.seed, energy=args.energy, executor=executor)

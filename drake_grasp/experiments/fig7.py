@@ -108,9 +108,9 @@ def plan_object(obj: str, config: Fig7Config, scenario_file: str = "", scenario_
 
 
 def ensure_plans(out_dir: pathlib.Path, config: Fig7Config, executor, progress=sys.stderr,
-                 scenario_file: str = "", scenario_name: str = "default") -> dict[str, dict]:
+                 scenario_file: str = "", scenario_name: str = "default", label: str = "fig7") -> dict[str, dict]:
     """The planner's result for each object: read back from its JSON file, or planned on `executor`
-    (objects in parallel) and written as each plan arrives."""
+    (objects in parallel) and written as each plan arrives (a line to `progress`, named `label`)."""
     from drake_grasp.experiments.results import write_atomically
 
     plans = {}
@@ -133,7 +133,7 @@ def ensure_plans(out_dir: pathlib.Path, config: Fig7Config, executor, progress=s
             plans[obj] = plan
             eps = ", ".join(f"{g['epsilon']:.3f}" for g in plan["grasps"])
             ranks = ", ".join(str(g["planner_rank"]) for g in plan["executed"])
-            print(f"fig7: planned {obj} ({config.energy}, {config.steps} steps) in {seconds:.0f} s; "
+            print(f"{label}: planned {obj} ({config.energy}, {config.steps} steps) in {seconds:.0f} s; "
                   f"eps of the top 3 after autograsp [{eps}]; executing ranks [{ranks}] of "
                   f"{len(plan['candidates'])} (the best the arm can reach)", file=progress, flush=True)
     return {obj: plans[obj] for obj in config.objects}

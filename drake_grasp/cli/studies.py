@@ -1,0 +1,102 @@
+"""The studies beyond the paper: capture (how much estimate error a grasp absorbs, in full dynamics).
+
+Like the sweeps (`sweeps`), each runs many trials on an executor, resumably, into a results folder it
+holds the lock of, and prints a summary (or one JSON object with --json).
+"""
+
+import json
+import time
+
+from drake_grasp.cli.common import UsageError, add_common, add_executor_args, check_out_dir, check_planner_args, jsonable
+from drake_grasp.cli.sweeps import check_sweep_args, objects_arg, scenario_args
+
+
+def add_capture(sub) -> None:
+    """`drake-grasp capture`."""
+    capture = sub.add_parser(
+        "capture",
+        help="beyond the paper: capture regions, the estimate errors a grasp still succeeds from (full dynamics)",
+        description="For each object and compliant grasp, trials whose grasp is computed from the true pose "
+        "and size with a known error added (along and across the object's axis, yaw, size), executed on the "
+        "true object; the same errors applied to the Eigengrasp planner's best reachable grasp. Each error "
+        "plane is sampled adaptively (a coarse grid, then cells whose corners disagree are split). Writes "
+        "capture.csv (resumable), capture.png (success maps), summary.md and summary.json (region areas).",
+    )
+    capture.add_argument("--quick", action="store_true",
+                         help="soccer ball and sponge, the grasp each resembles, the position plane, a 2 x 2 "
+                         "grid refined once (about 10 minutes on 2 cores)")
+    capture.add_argument("--objects", metavar="NAME|PATH,...",
+                         help="comma-separated objects (default: the paper's nine)")
+    capture.add_argument("--grasps", metavar="GRASP,...",
+                         help="compliant grasps to map: spherical, cylindrical, box, or chosen (the grasp of the "
+                         "object's closest primitive); default all three")
+    capture.add_argument("--planes", metavar="PLANE,...",
+                         help="error planes: position (along x across, cm), yaw (across, cm x yaw, deg), size "
+                         "(across, cm x size, %%); default all")
+    capture.add_argument("--methods", metavar="METHOD,...",
+                         help="oracle (compliant grasps from the erred estimate) and/or eigengrasp (the planner's "
+                         "best reachable grasp, shifted); default both")
+    capture.add_argument("--max-offset", type=float, default=4.0, help="position errors span +-this, cm (default 4)")
+    capture.add_argument("--max-yaw", type=float, default=30.0, help="yaw errors span +-this, deg (default 30)")
+    capture.add_argument("--max-size", type=float, default=30.0, help="size errors span +-this, %% (default 30)")
+    capture.add_argument("--base", type=int, help="coarse grid cells per side (default 4; quick 2)")
+    capture.add_argument("--depth", type=int, help="refinement levels (default 2; quick 1)")
+    capture.add_argument("--steps", type=int, default=70_000, help="planner steps (default 70000)")
+    capture.add_argument("--energy", choices=["contact", "contact-quality"], default="contact-quality",
+                         help="the planner's energy (default contact-quality)")
+    add_executor_args(capture)
+    add_common(capture)
+    capture.set_defaults(run=_run_capture, out_default="out/capture")
+
+
+def _names(text: str | None, option: str) -> tuple[str, ...] | None:
+    if text is None:
+        return None
+    names = tuple(n.strip() for n in text.split(",") if n.strip())
+    if not names:
+        raise UsageError(f"{option} is empty")
+    return names
+
+
+def _run_capture(args) -> int:
+    from drake_grasp.experiments import capture
+    from drake_grasp.objects import PAPER_OBJECTS
+
+    executor = check_sweep_args(args)
+    check_planner_args(str(args.steps), args.energy)
+    scenario_file, scenario_name = scenario_args(args)
+    for option, value in (("--max-offset", args.max_offset), ("--max-yaw", args.max_yaw), ("--max-size", args.max_size)):
+        if not 0 < value < 1e3:
+            raise UsageError(f"{option} must be > 0, got {value}")
+    if args.max_size >= 100:
+        raise UsageError(f"--max-size must be below 100 %, got {args.max_size}")
+    args.scale, args.largest_component = 1.0, False  # no mesh options here: objects_arg checks them
+    base = capture.CaptureConfig.quick(seed=args.seed) if args.quick else capture.CaptureConfig(objects=PAPER_OBJECTS)
+    overrides = {
+        "objects": objects_arg(args, base.objects), "seed": args.seed, "steps": args.steps, "energy": args.energy,
+        "offset_cm": (-args.max_offset, args.max_offset), "yaw_deg": (-args.max_yaw, args.max_yaw),
+        "size_pct": (-args.max_size, args.max_size),
+    }
+    for key, option in (("grasps", "--grasps"), ("planes", "--planes"), ("methods", "--methods")):
+        names = _names(getattr(args, key), option)
+        if names is not None:
+            overrides[key] = names
+    for key in ("base", "depth"):
+        if getattr(args, key) is not None:
+            overrides[key] = getattr(args, key)
+    config = capture.CaptureConfig(**{**base.__dict__, **overrides})
+    out = check_out_dir(args.out or (args.out_default + ("-quick" if args.quick else "")))
+    start = time.perf_counter()
+    with executor:
+        maps, lines = capture.run(config, out, executor, args.workers, scenario_file=scenario_file,
+                                  scenario_name=scenario_name)
+    wall = time.perf_counter() - start
+    trials = sum(len(results) for _, results in maps.values())
+    if args.json:
+        print(json.dumps(jsonable({"csv": str(out / "capture.csv"), "summary_md": str(out / "summary.md"),
+                                   "figure": str(out / "capture.png"), "trials": trials, "wall_time": wall,
+                                   "summary": lines})))
+    else:
+        print("\n".join(lines))
+        print(f"capture: {len(maps)} maps, {trials} trials, {wall:.0f} s; {out / 'summary.md'}, {out / 'capture.png'}")
+    return 0
