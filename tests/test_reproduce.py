@@ -58,3 +58,19 @@ def test_report_quotes_the_scaling_benchmark_or_says_how_to_run_it(tmp_path):
     assert "| local | 2 | 0.450 | 1.80x |" in text and "| ray | 2 | 0.400 | 1.60x |" in text
     (tmp_path / "scaling.json").write_text("{")
     assert "could not be read" in "\n".join(reproduce.scaling_lines(tmp_path / "scaling.json"))
+
+
+def test_study_sections_are_included_when_present_with_links_rebased(tmp_path):
+    from drake_grasp.experiments.reproduce import study_sections
+
+    lines = study_sections(tmp_path)
+    assert len(lines) == 2 and "drake-grasp capture --out" in lines[0]  # none present: how to add them
+    (tmp_path / "capture").mkdir()
+    (tmp_path / "capture" / "summary.md").write_text(
+        "# Capture regions\n\nText.\n\n## ε against physics\n\n![map](capture.png) [r](replays/a.html) "
+        "[web](https://example.org)\n")
+    text = "\n".join(study_sections(tmp_path))
+    assert "## Beyond the paper: capture regions" in text and "# Capture regions" not in text
+    assert "### ε against physics" in text
+    assert "](capture/capture.png)" in text and "](capture/replays/a.html)" in text
+    assert "](https://example.org)" in text

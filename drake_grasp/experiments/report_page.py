@@ -19,7 +19,8 @@ body { font-family: system-ui, sans-serif; max-width: 72rem; margin: 2rem auto; 
 table { border-collapse: collapse; margin: 1rem 0; font-size: 0.9rem; }
 th, td { border: 1px solid #ccc; padding: 0.3rem 0.5rem; vertical-align: top; text-align: left; }
 th { background: #f3f3f3; }
-img.figure { max-width: 100%; border: 1px solid #ddd; margin: 0.5rem 0; }
+img { max-width: 100%; }
+img.figure { border: 1px solid #ddd; margin: 0.5rem 0; }
 code { background: #f3f3f3; padding: 0 0.2rem; }
 """
 

@@ -11,6 +11,7 @@ one Meshcat replay per object and method (`replays`), all of it openable offline
 import dataclasses
 import json
 import pathlib
+import re
 import time
 
 import numpy as np
@@ -157,6 +158,41 @@ def scaling_lines(path: pathlib.Path = SCALING_FILE) -> list[str]:
     return lines
 
 
+# The studies beyond the paper a report includes when their results are in its folder: (subfolder,
+# title, the command that makes them there).
+STUDIES = (
+    ("capture", "capture regions and ε against physics", "drake-grasp capture --out {out}/capture"),
+    ("sensitivity", "sensitivity of the chosen grasps", "drake-grasp sensitivity --out {out}/sensitivity"),
+    ("near_primitives", "shape resemblance on near-primitives",
+     "drake-grasp near-primitives --out {out}/near_primitives"),
+)
+
+
+def study_sections(out_dir: pathlib.Path) -> list[str]:
+    """The report's sections for the studies beyond the paper whose summary.md is in `out_dir` (their
+    headings one level down, their relative links rebased onto the report's folder), and a line on
+    how to add the missing ones."""
+    lines, missing = [], []
+    for folder, title, command in STUDIES:
+        summary = out_dir / folder / "summary.md"
+        if not summary.is_file():
+            missing.append(f"`{command.format(out=out_dir)}` ({title})")
+            continue
+        text = summary.read_text()
+        # Links relative to the study's folder become relative to the report's.
+        text = re.sub(r"\]\((?![a-z]+:|/|#)([^)]+)\)", lambda m: f"]({folder}/{m.group(1)})", text)
+        body = text.splitlines()
+        if body and body[0].startswith("# "):
+            body = body[1:]  # the study's own title: this section has one
+        # Its headings one level down, under this section's.
+        body = [("#" + line) if line.startswith("#") else line for line in body]
+        lines += [f"## Beyond the paper: {title}", "", f"From [{folder}/summary.md]({folder}/summary.md).",
+                  *body, ""]
+    if missing:
+        lines += ["Further studies add their sections here when run into this folder: " + "; ".join(missing) + ".", ""]
+    return lines
+
+
 def write_report(path: pathlib.Path, claims: list[Claim], wall_time: float, quick: bool, energy: str,
                  figures: list[pathlib.Path], resumed: dict | None = None, executor: str = "local",
                  scaling_file: pathlib.Path = SCALING_FILE, novel_lines: list[str] | None = None) -> None:
@@ -182,6 +218,7 @@ def write_report(path: pathlib.Path, claims: list[Claim], wall_time: float, quic
                   "Both methods on generated objects neither has seen (`drake-grasp novel`; details in "
                   "[novel/summary.md](novel/summary.md)), through the runner, seeds and success test of Fig. 6 "
                   "and Fig. 7.", "", *novel_lines, ""]
+    lines += study_sections(path.parent)
     lines += scaling_lines(scaling_file)
     write_atomically(path, "\n".join(lines))
 
