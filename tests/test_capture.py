@@ -7,6 +7,7 @@ import pytest
 
 from drake_grasp.experiments import capture
 from drake_grasp.experiments.executors import LocalExecutor
+from drake_grasp.experiments.runner import trial_table
 
 
 def test_plane_points_become_estimate_errors_in_si_units():
@@ -34,25 +35,40 @@ def test_bad_configurations_are_refused(bad):
         capture.CaptureConfig(objects=("sphere:0.1",), **bad)
 
 
-def test_a_tiny_study_runs_refines_and_resumes(tmp_path, short_scenario_file):
-    # One cell from no error to 6 cm along and across a 10 cm sphere, refined once where its corners
-    # disagree (measured: the oracle's spherical grasp holds at no error and misses 6 cm off along one
-    # of the axes).
+def _tiny_study(tmp_path, scenario_file, depth, replays=0):
+    # One cell from no error to 6 cm along and across a 10 cm sphere (measured: the oracle's spherical
+    # grasp holds at no error and misses 6 cm off along one of the axes), refined `depth` times where
+    # its corners disagree.
     config = capture.CaptureConfig(objects=("sphere:0.1",), grasps=("spherical",), planes=("position",),
-                                   methods=("oracle",), offset_cm=(0.0, 6.0), base=1, depth=1)
-    maps, lines = capture.run(config, tmp_path, LocalExecutor(2), 2, scenario_file=str(short_scenario_file))
+                                   methods=("oracle",), offset_cm=(0.0, 6.0), base=1, depth=depth)
+    maps, lines = capture.run(config, tmp_path, LocalExecutor(2), scenario_file=str(scenario_file),
+                              replays_per_kind=replays)
     ((cell, (tree, results)),) = maps.items()
     assert results[(0, 0)]  # no error: the grasp holds
-    corners = [results[p] for p in ((0, 0), (0, 2), (2, 0), (2, 2))]
-    # 4 corners; if they disagree, the centre and the 4 edge midpoints of the split cell.
-    assert len(results) == (9 if len(set(corners)) > 1 else 4)
+    records = trial_table(tmp_path / "capture.csv", read_only=True).rows()
+    assert len(records) == len(results)
+    assert sorted(results.values()) == sorted(r["success"] in ("1", "True") for r in records)
     area = capture.areas(maps)[cell]
-    assert 0 < area.lower <= area.estimate <= area.upper <= area.total == 36.0
-    rounds = 2 if len(results) == 9 else 1
+    assert 0 <= area.lower <= area.estimate <= area.upper <= area.total == 36.0
     assert (tmp_path / "summary.md").exists() and (tmp_path / "capture.png").exists()
     assert any("sphere:0.1" in line for line in lines)
     progress = io.StringIO()
-    again, _ = capture.run(config, tmp_path, LocalExecutor(2), 2, progress, scenario_file=str(short_scenario_file))
+    again, _ = capture.run(config, tmp_path, LocalExecutor(2), progress, scenario_file=str(scenario_file),
+                           replays_per_kind=replays)
     assert again == maps  # read back, nothing run again
-    assert "resuming, 4/4" in progress.getvalue() and (rounds == 1 or "resuming, 5/5" in progress.getvalue())
     assert ": ok (" not in progress.getvalue() and "missed" not in progress.getvalue()
+    return config, results
+
+
+def test_a_tiny_study_runs_and_resumes(tmp_path, short_scenario_file):
+    _, results = _tiny_study(tmp_path, short_scenario_file, depth=0)
+    assert sorted(results) == [(0, 0), (0, 1), (1, 0), (1, 1)]
+
+
+@pytest.mark.slow
+def test_a_tiny_study_refines_where_the_corners_disagree(tmp_path, short_scenario_file):
+    _, results = _tiny_study(tmp_path, short_scenario_file, depth=1, replays=1)
+    assert (tmp_path / "epsilon.png").exists() and "ε against physics" in (tmp_path / "summary.md").read_text()
+    corners = [results[p] for p in ((0, 0), (0, 2), (2, 0), (2, 2))]
+    # 4 corners; if they disagree, the centre and the 4 edge midpoints of the split cell.
+    assert len(results) == (9 if len(set(corners)) > 1 else 4)

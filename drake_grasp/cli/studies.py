@@ -88,7 +88,7 @@ def _run_capture(args) -> int:
     out = check_out_dir(args.out or (args.out_default + ("-quick" if args.quick else "")))
     start = time.perf_counter()
     with executor:
-        maps, lines = capture.run(config, out, executor, args.workers, scenario_file=scenario_file,
+        maps, lines = capture.run(config, out, executor, scenario_file=scenario_file,
                                   scenario_name=scenario_name)
     wall = time.perf_counter() - start
     trials = sum(len(results) for _, results in maps.values())

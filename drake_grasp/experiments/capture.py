@@ -31,6 +31,7 @@ import dataclasses
 import json
 import math
 import pathlib
+import re
 import sys
 import time
 
@@ -215,8 +216,9 @@ def run_capture(config: CaptureConfig, out_dir: pathlib.Path, executor, progress
         by_key = {(r["fingerprint"], r["object"], r["method"], r["grasp"]): r for r in rows}
         for (cell, point, spec), fingerprint in zip(todo, prints):
             row = by_key[(fingerprint, spec.object, spec.method, spec.grasp)]
-            maps[cell][1][point] = bool(row["success"])
-            trials.append(Trial(cell, point, spec, fingerprint, bool(row["success"])))
+            held = str(row["success"]) in ("1", "True")  # as read back from the CSV
+            maps[cell][1][point] = held
+            trials.append(Trial(cell, point, spec, fingerprint, held))
     return maps, trials
 
 
@@ -253,7 +255,8 @@ def plot(maps: dict, out_dir: pathlib.Path) -> list[pathlib.Path]:
     planes = [p for p in PLANES if any(c.plane == p for c in maps)]
     if not rows:
         return []
-    fig, axes = plt.subplots(len(rows), len(planes), figsize=(2.8 * len(planes), 2.4 * len(rows)), squeeze=False)
+    fig, axes = plt.subplots(len(rows), len(planes), figsize=(max(4.5, 2.8 * len(planes)), 2.4 * len(rows)),
+                             squeeze=False)
     for i, (obj, method, grasp) in enumerate(rows):
         for j, plane in enumerate(planes):
             ax = axes[i][j]
@@ -283,7 +286,8 @@ def plot(maps: dict, out_dir: pathlib.Path) -> list[pathlib.Path]:
             ax.tick_params(labelsize=6)
             label = grasp if method == "oracle" else "planner's best"
             ax.set_title(f"{pathlib.Path(obj).stem}, {label}", fontsize=7)
-    fig.suptitle("Capture regions in full dynamics (green: the grasp holds)", fontsize=9)
+    fig.suptitle("Capture regions in full dynamics\n(cell colour: share of its corners that held, green = all; "
+                 "dots: trials, filled = held)", fontsize=8)
     fig.tight_layout()
     paths = save_figure(fig, out_dir, "capture", dpi=110)
     plt.close(fig)
@@ -310,7 +314,8 @@ def epsilon_against_physics(trials: list[Trial], out_dir: pathlib.Path, progress
         for i in indices[:replays_per_kind]:
             t = trials[i]
             x, y = t.point
-            label = f"{kind}_{pathlib.Path(t.cell.object).stem}_{t.cell.method}_{t.cell.plane}_{x}_{y}"
+            label = re.sub(r"[^A-Za-z0-9_.-]", "_", f"{kind}_{pathlib.Path(t.cell.object).stem}_{t.cell.method}_"
+                                                     f"{t.cell.plane}_{x}_{y}_{t.fingerprint[:8]}")
             cases.append((label, t.spec, epsilons[i]))
     paths = epsilon_physics.write_replays([(label, spec) for label, spec, _ in cases], out_dir, progress)
     if cases:
@@ -319,7 +324,7 @@ def epsilon_against_physics(trials: list[Trial], out_dir: pathlib.Path, progress
     return lines + ["", "![ε against physics](epsilon.png)"]
 
 
-def write_summary(maps: dict, out_dir: pathlib.Path, config: CaptureConfig, wall_time: float, workers,
+def write_summary(maps: dict, out_dir: pathlib.Path, config: CaptureConfig, wall_time: float, where: str,
                   epsilon_lines: list[str] = ()) -> pathlib.Path:
     """summary.md (the table, how it was sampled, ε against physics) and summary.json (areas, for the
     results page)."""
@@ -327,7 +332,7 @@ def write_summary(maps: dict, out_dir: pathlib.Path, config: CaptureConfig, wall
 
     trials = sum(len(results) for _, results in maps.values())
     lines = ["# Capture regions in full dynamics", "",
-             f"{len(maps)} maps, {trials} trials in {wall_time:.0f} s wall ({workers} workers); seed {config.seed}; "
+             f"{len(maps)} maps, {trials} trials in {wall_time:.0f} s wall (executor: {where}); seed {config.seed}; "
              f"quadtree: {config.base} x {config.base} coarse cells, {config.depth} refinement levels (a cell whose "
              "corners disagree is split in four).", "",
              "The compliant grasp is computed from the true pose and size with the error added (method `oracle`); "
@@ -342,10 +347,11 @@ def write_summary(maps: dict, out_dir: pathlib.Path, config: CaptureConfig, wall
     return path
 
 
-def run(config: CaptureConfig, out_dir: pathlib.Path, executor, workers, progress=sys.stderr,
-        scenario_file: str = "", scenario_name: str = "default", epsilon: bool = True) -> tuple[dict, list[str]]:
-    """The study end to end: trials, figure, ε against physics (unless `epsilon` is False), summary.
-    Returns (maps, summary lines)."""
+def run(config: CaptureConfig, out_dir: pathlib.Path, executor, progress=sys.stderr,
+        scenario_file: str = "", scenario_name: str = "default", epsilon: bool = True,
+        replays_per_kind: int = 2) -> tuple[dict, list[str]]:
+    """The study end to end: trials, figure, ε against physics (unless `epsilon` is False) with up to
+    `replays_per_kind` replays of each kind of disagreement, summary. Returns (maps, summary lines)."""
     from drake_grasp.experiments.lock import results_lock
 
     start = time.perf_counter()
@@ -353,8 +359,8 @@ def run(config: CaptureConfig, out_dir: pathlib.Path, executor, workers, progres
     with results_lock(out_dir):
         maps, trials = run_capture(config, out_dir, executor, progress, scenario_file, scenario_name)
         plot(maps, out_dir)
-        epsilon_lines = epsilon_against_physics(trials, out_dir, progress) if epsilon else []
-        write_summary(maps, out_dir, config, time.perf_counter() - start, workers, epsilon_lines)
+        epsilon_lines = epsilon_against_physics(trials, out_dir, progress, replays_per_kind) if epsilon else []
+        write_summary(maps, out_dir, config, time.perf_counter() - start, executor.describe(), epsilon_lines)
     return maps, summary_lines(maps) + ([""] + epsilon_lines[:1] if epsilon_lines else [])
 
 

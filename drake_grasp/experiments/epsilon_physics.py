@@ -143,8 +143,10 @@ def summary_lines(result: Calibration, label: str) -> list[str]:
     lines = [f"ε as a predictor of success ({label}, {len(result.epsilons)} trials): area under the ROC curve "
              f"{auc_text}; 0.5 is chance.", "",
              "| ε bin | trials | held |", "|---|---|---|"]
-    for b in result.bins:
-        span = "ε = 0 (no force closure)" if b.hi <= 1e-12 else f"{b.lo:.3f} - {b.hi:.3f}"
+    for i, b in enumerate(result.bins):
+        last = "≤" if i == len(result.bins) - 1 else "<"  # bins are [lo, hi), the last one closed
+        span = ("ε = 0 (no force closure)" if b.hi <= 1e-12 else
+                f"0 < ε {last} {b.hi:.3f}" if b.lo <= 1e-12 else f"{b.lo:.3f} ≤ ε {last} {b.hi:.3f}")
         lines.append(f"| {span} | {b.trials} | {short_rate(b.successes, b.trials)} |")
     lines += ["", f"Force closure (ε > 0) but the object fell: {len(result.closure_fell)} trials; no force closure "
               f"(ε = 0) but it held: {len(result.no_closure_held)} trials."]
@@ -173,7 +175,7 @@ def plot(result: Calibration, out_dir: pathlib.Path, name: str = "epsilon") -> l
     left.grid(alpha=0.3)
     left.set_title("reliability (error bars: 95 % Wilson)", fontsize=9)
     fpr, tpr = calibration.roc_curve(result.epsilons, result.held)
-    right.plot(fpr, tpr, "-", color="tab:orange", drawstyle="steps-post")
+    right.plot(fpr, tpr, "-", color="tab:orange")  # ties between outcomes give the diagonal pieces
     right.plot([0, 1], [0, 1], ":", color="gray")
     auc = result.auc
     right.set_title(f"ROC of ε: area {auc.value:.2f}" if np.isfinite(auc.value) else "ROC of ε: n/a", fontsize=9)
@@ -188,8 +190,13 @@ def plot(result: Calibration, out_dir: pathlib.Path, name: str = "epsilon") -> l
 
 def write_replays(cases: list, out_dir: pathlib.Path, progress=sys.stderr) -> list[pathlib.Path]:
     """Meshcat replays of the given (label, spec) disagreement cases (each trial run again, with the
-    same record), written as out_dir/replays/<label>.html; existing files are kept."""
+    same record), written as out_dir/replays/<label>.html; existing files are kept (a label names one
+    trial: callers put its fingerprint in it)."""
+    import logging
+
     from drake_grasp.trial import run
+
+    logging.getLogger("drake").setLevel(logging.WARNING)  # not Meshcat's "listening at" per replay
 
     folder = out_dir / "replays"
     folder.mkdir(parents=True, exist_ok=True)
