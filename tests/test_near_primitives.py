@@ -1,0 +1,130 @@
+"""The near-primitive generator (drake_grasp.geometry.near_primitives) and its study's pure parts."""
+
+import json
+import math
+
+import numpy as np
+import pytest
+import trimesh
+
+from drake_grasp.geometry import near_primitives as npr
+
+COUNT = 16  # four of each class
+
+
+@pytest.fixture(scope="module")
+def objects():
+    return [npr.near_primitive(3, i) for i in range(COUNT)]
+
+
+def test_classes_cycle_and_map_to_primitives(objects):
+    assert [o.shape_class for o in objects[:4]] == list(npr.CLASSES)
+    assert {o.primitive for o in objects} == {"sphere", "box", "cylinder"}
+    assert all(npr.PRIMITIVE_OF_CLASS[o.shape_class] == o.primitive for o in objects)
+
+
+def test_meshes_are_watertight_convex_solids_resting_on_their_base(objects):
+    for o in objects + [npr.perfect_mesh(c) for c in npr.PERFECT]:
+        m = o.mesh
+        assert m.is_watertight and m.is_winding_consistent and m.volume > 0, o.name
+        assert m.volume == pytest.approx(m.convex_hull.volume, rel=1e-4), o.name
+        assert np.allclose(m.bounds.mean(axis=0), 0.0, atol=1e-6), o.name  # centred
+        assert 0.04 <= np.max(m.extents) <= 0.30, o.name
+
+
+def test_parameters_within_the_stated_ranges(objects):
+    def within(value, low_high, slack=1e-12):
+        return low_high[0] - slack <= value <= low_high[1] + slack
+
+    for o in objects:
+        p = o.params
+        if o.shape_class == "ellipsoid":
+            assert within(2 * p["radius"], npr.SPHERE_DIAMETER)
+            deviations = np.array(p["semi_axes"]) / p["radius"] - 1.0
+            assert np.all(np.abs(deviations) <= npr.ELLIPSOID_DEVIATION + 1e-12)
+            assert p["semi_axes"][2] == min(p["semi_axes"])  # rests on its smallest semi-axis
+        elif o.shape_class == "rounded_box":
+            assert all(within(s, npr.BOX_SIDE) for s in p["sides"])
+            assert within(p["fillet_fraction"], npr.BOX_FILLET)
+            assert p["fillet"] == pytest.approx(p["fillet_fraction"] * min(p["sides"]))
+        else:
+            assert within(p["diameter"], npr.CYLINDER_DIAMETER) and within(p["aspect"], npr.CYLINDER_ASPECT)
+            assert p["length"] == pytest.approx(p["aspect"] * p["diameter"])
+            if o.shape_class == "tapered_cylinder":
+                assert within(p["taper"], npr.CYLINDER_TAPER)
+                assert (p["radius_big"] - p["radius_small"]) / (p["diameter"] / 2) == pytest.approx(p["taper"])
+            else:
+                assert within(p["bulge"], npr.CYLINDER_BULGE) and within(p["end_fillet"], npr.CYLINDER_END_FILLET)
+
+
+def test_volumes_match_the_shapes_formulas(objects):
+    """The meshes are inner approximations of the nominal solids, within a few per cent."""
+    for o in objects:
+        p, volume = o.params, o.mesh.volume
+        if o.shape_class == "ellipsoid":
+            nominal = 4.0 / 3.0 * math.pi * np.prod(p["semi_axes"])
+        elif o.shape_class == "rounded_box":
+            # Steiner: inner box (a, b, c) grown by a ball of radius r.
+            r = p["fillet"]
+            a, b, c = np.array(p["sides"]) - 2 * r
+            nominal = a * b * c + 2 * (a * b + b * c + c * a) * r + math.pi * (a + b + c) * r**2 + 4 / 3 * math.pi * r**3
+        elif o.shape_class == "tapered_cylinder":
+            r1, r2 = p["radius_big"], p["radius_small"]
+            nominal = math.pi * p["length"] / 3.0 * (r1 * r1 + r1 * r2 + r2 * r2)
+        else:
+            r, length = p["diameter"] / 2, p["length"]
+            low = math.pi * r * r * length * (1 - 0.6 * p["end_fillet"] ** 2 * 2 * r / length)  # rounded ends
+            high = math.pi * (r * (1 + p["bulge"])) ** 2 * length
+            assert 0.97 * low <= volume <= high, o.name
+            continue
+        assert volume == pytest.approx(nominal, rel=0.03), o.name
+        assert volume <= nominal * (1 + 1e-6), o.name  # inside the nominal solid
+
+
+def test_perfect_meshes_have_no_departure():
+    sphere, box, cylinder = (npr.perfect_mesh(c) for c in ("ellipsoid", "rounded_box", "tapered_cylinder"))
+    assert np.allclose(sphere.mesh.extents, 0.09, atol=1e-6)
+    assert len(box.mesh.vertices) == 8 and np.allclose(sorted(box.mesh.extents), [0.06, 0.07, 0.10], atol=1e-6)
+    assert cylinder.mesh.extents[0] == pytest.approx(0.18, abs=1e-6)
+    assert cylinder.mesh.extents[1] == pytest.approx(0.065, abs=1e-3)
+
+
+def test_every_object_rests_stably_as_generated(objects):
+    """The loader's own test (else it would turn the object over, with a warning); a tapered cylinder
+    rests on a side facet made horizontal, not on an end's rim."""
+    from drake_grasp.user_objects import _rests_stably_upright
+
+    for o in objects:
+        m = o.mesh
+        assert _rests_stably_upright(m.convex_hull, np.asarray(m.center_mass)), o.name
+        if o.shape_class == "tapered_cylinder":
+            z_min = m.vertices[:, 2].min()
+            bottom = (m.face_normals[:, 2] < -1 + 1e-6) & (np.abs(m.triangles[:, :, 2] - z_min).max(axis=1) < 1e-6)
+            assert m.area_faces[bottom].sum() > 1e-4, o.name  # a quad facet along the length, flat on the table
+
+
+def test_same_seed_gives_byte_identical_files(tmp_path):
+    a = npr.generate(6, 7, tmp_path / "a", perfect=True)
+    npr.generate(6, 7, tmp_path / "b", perfect=True)
+    npr.generate(3, 7, tmp_path / "c")
+    npr.generate(6, 8, tmp_path / "d")
+    for row in a:
+        assert (tmp_path / "a" / row["file"]).read_bytes() == (tmp_path / "b" / row["file"]).read_bytes()
+    for row in a[:3]:  # object i of seed s does not depend on how many were generated
+        assert (tmp_path / "a" / row["file"]).read_bytes() == (tmp_path / "c" / row["file"]).read_bytes()
+    other = {p.name: p.read_bytes() for p in (tmp_path / "d").glob("*.obj")}
+    assert all(other[row["file"].replace("_7_", "_8_")] != (tmp_path / "a" / row["file"]).read_bytes()
+               for row in a[:6])
+    manifest = json.loads((tmp_path / "a" / "manifest.json").read_text())
+    assert manifest == a and [r["primitive"] for r in a[:4]] == ["sphere", "box", "cylinder", "cylinder"]
+    mesh = trimesh.load(tmp_path / "a" / a[0]["file"], process=True)
+    assert mesh.is_watertight and mesh.volume == pytest.approx(a[0]["volume_m3"], rel=1e-5)
+
+
+def test_bad_arguments():
+    with pytest.raises(ValueError):
+        npr.near_primitive(-1, 0)
+    with pytest.raises(ValueError):
+        npr.draw_parameters("torus", np.random.default_rng(0))
+    with pytest.raises(ValueError):
+        npr.rounded_box_mesh([0.1, 0.1, 0.1], 0.06)
