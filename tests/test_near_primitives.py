@@ -128,3 +128,108 @@ def test_bad_arguments():
         npr.draw_parameters("torus", np.random.default_rng(0))
     with pytest.raises(ValueError):
         npr.rounded_box_mesh([0.1, 0.1, 0.1], 0.06)
+
+
+# --- The study's pure parts: the sphere's tolerances, re-scoring, the report -----------------------
+
+import pathlib  # noqa: E402
+
+from drake_grasp.experiments import near_primitives as study  # noqa: E402
+from drake_grasp.primitives import scores  # noqa: E402
+
+
+def test_the_configured_sphere_scales_are_derived_from_the_10_percent_ellipsoids():
+    tau_s, tau_se = study.sphere_scales_from_ellipsoids()
+    default = scores.ScoreParams()
+    assert default.sphere_variation_scale == pytest.approx(tau_s, abs=1e-3)
+    assert default.sphere_roundness_scale == pytest.approx(tau_se, abs=1e-3)
+    scenario = study._scenario("", "default")
+    assert scenario.perception.scores == default  # the scenario file says the same
+
+
+@pytest.mark.parametrize("semi_axes", [[1.1, 1.1, 0.9], [1.1, 0.9, 0.9]])
+def test_the_extreme_10_percent_ellipsoids_are_at_one_half(semi_axes):
+    assert study.ellipsoid_evidence(np.array(semi_axes) * 0.05).sphere == pytest.approx(0.5, abs=0.005)
+
+
+@pytest.mark.parametrize("semi_axes", [[1.05, 0.95, 0.92], [1.0, 1.0, 1.0], [1.08, 1.02, 0.95], [1.1, 1.0, 0.9],
+                                       [1.0, 1.0, 0.9]])
+def test_ideal_ellipsoids_within_10_percent_are_spheres(semi_axes):
+    new = study.ellipsoid_evidence(np.array(semi_axes) * 0.05)
+    assert new.sphere > 0.5 and new.sphere == max(new.sphere, new.cylinder, new.box)
+
+
+def test_ideal_boxes_and_cylinders_keep_their_primitive():
+    shapes = {"box": [npr.rounded_box_mesh([0.1, 0.07, 0.06], 0.0), npr.rounded_box_mesh([0.08, 0.08, 0.08], 0.016),
+                      npr.rounded_box_mesh([0.12, 0.06, 0.05], 0.005)],
+              "cylinder": [npr.tapered_cylinder_mesh(0.18, 0.035, 0.03), npr.rounded_cylinder_mesh(0.2, 0.03, 0.05, 0.2)]}
+    for primitive, meshes in shapes.items():
+        for mesh in meshes:
+            stats = study.ideal_statistics(np.asarray(mesh.vertices), 0.7, 0.5)
+            evidence = scores.evaluate(stats, scores.ScoreParams())
+            assert max(scores.SHAPES, key=evidence.resemblance) == primitive, (primitive, mesh.extents, evidence)
+
+
+def test_main_scorer_is_the_old_formula_and_misses_a_near_sphere():
+    stats = study.ideal_statistics(trimesh.creation.icosphere(3).vertices * [0.055, 0.05, 0.046], 0.7, 0.5)
+    old, new = study.main_scorer(stats.to_vector()), study.rescore(stats.to_vector())
+    e = old["evidence"]
+    assert old["sphere"] == pytest.approx(e.roundness * e.invariance_a * e.invariance_b)
+    assert old["box"] == pytest.approx(1 - max(e.invariance_a, e.roundness * e.invariance_b))
+    assert old["best"] != "sphere" and new["best"] == "sphere"
+
+
+def test_fingerprint_leaves_the_scorer_out():
+    text = "a:\n  b: 1\n  scores:\n    x: 1\n    y:\n      z: 2\n  c: 3\nscores:\n  w: 1\nd: 4\n"
+    assert study.without_block(text, "scores") == "a:\n  b: 1\n  c: 3\nd: 4\n"
+    task = study.Task("sphere:0.09", "perfect", "primitive", "sphere", 0)
+    scenario = study._scenario("", "default")
+    import dataclasses
+
+    other = dataclasses.replace(scenario, perception=dataclasses.replace(
+        scenario.perception, scores=scores.ScoreParams(sphere_variation_scale=0.2)))
+    assert study.exploration_fingerprint(task, scenario) == study.exploration_fingerprint(task, other)
+    moved = dataclasses.replace(scenario, perception=dataclasses.replace(scenario.perception, rate_hz=15.0))
+    assert study.exploration_fingerprint(task, scenario) != study.exploration_fingerprint(task, moved)
+
+
+def _fake_record(obj, set_, shape_class, primitive, stats, seed=0):
+    best = study.rescore(stats.to_vector())
+    return {"fingerprint": "0" * 16, "set": set_, "object": obj, "class": shape_class, "primitive": primitive,
+            "seed": str(seed), "found": "1", **{s: repr(best[s]) for s in scores.SHAPES}, "best": best["best"],
+            "scorer": study.scorer_fingerprint(), "statistics": json.dumps(stats.to_vector().tolist()),
+            "evidence": "{}", "errors": "{}", "wall_time": "1.0", "detail": ""}
+
+
+def test_report_tables_and_figure_from_records(tmp_path):
+    rows = npr.generate(4, 2, tmp_path / "objs")
+    records = []
+    for row in rows:
+        mesh = trimesh.load(tmp_path / "objs" / row["file"], process=True)
+        stats = study.ideal_statistics(np.asarray(mesh.vertices), 0.7, 0.5, samples=11)
+        records.append(_fake_record(str(tmp_path / "objs" / row["file"]), "near", row["class"], row["primitive"], stats))
+    records.append({**records[0], "object": "lost.obj", "found": "0", "statistics": "[]", "detail": "object not found"})
+    figure = tmp_path / "np.png"
+    text = study.report({"development": records, "perfect": records[:1]}, command="x", seeds=(2, 3), count=1,
+                        figure=figure, wall=1.0, cpu=1.0, workers=1, baseline=study.main_scorer)
+    assert figure.is_file() and figure.stat().st_size > 1000
+    assert "| development | ellipsoid | sphere |" in text and "95 % CI" in text
+    assert "| sphere | " in text and "none |" in text  # the confusion table, with the lost object
+    assert "equal the re-scored ones" in text
+    acc = study.accuracy_rows(study.score_records(records))
+    assert ("all sphere", "sphere", 1, 2) in acc  # the ideal ellipsoid right, the lost one not
+
+
+def test_script_bad_arguments_one_line_exit_2(capsys):
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location(
+        "near_primitives_check", pathlib.Path(__file__).parents[1] / "scripts" / "near_primitives_check.py")
+    script = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(script)
+    for argv, message in ((["--count", "0"], "--count must be >= 1"), (["--seed", "1"], "--eval-seed must differ"),
+                          (["--workers", "0"], "--workers must be >= 1"), (["--report", "x.txt"], "expected a .md"),
+                          (["--bogus"], "unrecognized arguments")):
+        assert script.main(argv) == 2
+        err = capsys.readouterr().err.strip().splitlines()
+        assert len(err) == 1 and err[0].startswith("near_primitives_check: error:") and message in err[0], err
