@@ -233,3 +233,21 @@ def test_script_bad_arguments_one_line_exit_2(capsys):
         assert script.main(argv) == 2
         err = capsys.readouterr().err.strip().splitlines()
         assert len(err) == 1 and err[0].startswith("near_primitives_check: error:") and message in err[0], err
+
+
+def test_one_real_exploration_names_a_near_sphere(tmp_path):
+    """The study's whole path on one generated ellipsoid (semi-axes 37/35/35 mm): explored
+    as `drake-grasp resemble` does it (default perception, about 15 s), named a sphere (on main: a
+    cylinder), its record resumable and re-scored to the run's own resemblances."""
+    obj = npr.near_primitive(0, 12)
+    assert obj.shape_class == "ellipsoid"
+    path = tmp_path / "ellipsoid.obj"
+    path.write_text(npr.obj_text(obj.mesh))
+    task = study.Task(str(path), "near", "ellipsoid", "sphere", 12)
+    records = study.run([task], tmp_path / "explorations.csv")
+    (record,) = records
+    assert record["found"] == "1" and record["best"] == "sphere", record
+    scored = study.score_records(records, baseline=study.main_scorer)[0]
+    assert study.run_agrees(scored, study.scorer_fingerprint()) is True
+    assert scored.chosen("before") != "sphere"  # the scorer on main missed it
+    assert study.run([task], tmp_path / "explorations.csv") == records  # resumed, not run again

@@ -181,6 +181,10 @@ def explore_one(task: Task) -> dict:
             comparison = comparison_record(result, spec)
             errors = comparison.get("errors", {})
             record["errors"] = {k: errors.get(k) for k in ("centre", "depth", "axis_deg", "extents")}
+            # A round mesh may roll a little while it is looked at (it is rendered as its 64-vertex hull).
+            record["errors"]["object_moved"] = comparison["truth"]["object_moved"]
+            R = result.X_WO_start.rotation().inverse() @ result.X_WO_end.rotation()
+            record["errors"]["object_turned_deg"] = math.degrees(R.ToAngleAxis().angle())
         else:
             record["detail"] = estimate.status
     except Exception as error:  # noqa: BLE001 -- a study never stops for one object
