@@ -462,8 +462,8 @@ def plot(groups: dict[str, list[Scored]], path: pathlib.Path, baseline: bool = F
     band = {"ellipsoid": "#dbe9f6", "rounded_box": "#dcefdc", "tapered_cylinder": "#fde6cf",
             "rounded_cylinder": "#f9d6b0", "primitive": "#eeeeee", "catalogue": "#f2f2f2"}
     panels = [(name, members) for name, members in groups.items() if members]
-    fig, axes = plt.subplots(len(panels), 1, figsize=(max(8.0, 0.22 * max(len(m) for _, m in panels) + 2), 2.4 * len(panels)),
-                             squeeze=False)
+    width = max(8.0, 0.22 * max(len(m) for _, m in panels) + 2)
+    fig, axes = plt.subplots(len(panels), 1, figsize=(width, 2.4 * len(panels)), squeeze=False)
     for ax, (name, members) in zip(axes[:, 0], panels):
         members = sorted(members, key=lambda s: (s.record["class"], s.name, int(s.record["seed"])))
         several_seeds = len({s.record["seed"] for s in members if s.record["set"] != "near"}) > 1
