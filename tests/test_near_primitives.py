@@ -251,3 +251,27 @@ def test_one_real_exploration_names_a_near_sphere(tmp_path):
     assert study.run_agrees(scored, study.scorer_fingerprint()) is True
     assert scored.chosen("before") != "sphere"  # the scorer on main missed it
     assert study.run([task], tmp_path / "explorations.csv") == records  # resumed, not run again
+
+
+def test_run_study_writes_summary_and_figure_and_resumes(tmp_path, monkeypatch):
+    """The orchestration (objects, lock, records, summary.md, figure, resume) with the exploration
+    replaced by ideal silhouettes of a sphere (no simulation)."""
+    from drake_grasp.experiments.executors import LocalExecutor
+
+    sphere = study.ideal_statistics(trimesh.creation.icosphere(2).vertices * 0.05, 0.7, 0.5, samples=7)
+
+    def fake_explore(task):
+        record = _fake_record(task.object, task.set, task.shape_class, task.primitive, sphere, task.seed)
+        record.pop("fingerprint")
+        return {**record, "statistics": json.loads(record["statistics"]), "evidence": {}, "errors": {}}
+
+    monkeypatch.setattr(study, "explore_one", fake_explore)
+    config = study.StudyConfig(count=1, seed=4, eval_seed=5, reference_seeds=1, catalogue=False)
+    text = study.run_study(config, tmp_path, LocalExecutor(1), progress=__import__("io").StringIO())
+    assert (tmp_path / "summary.md").read_text() == text and (tmp_path / study.FIGURE).is_file()
+    assert "this invocation computed 14 of them" in text  # 6 perfect + 4 + 4 near-primitives
+    assert "| evaluation | all box | box |" in text
+    again = study.run_study(config, tmp_path, LocalExecutor(1), progress=__import__("io").StringIO())
+    assert "this invocation computed 0 of them" in again
+    with pytest.raises(ValueError, match="must differ"):
+        study.run_study(study.StudyConfig(seed=1, eval_seed=1), tmp_path, LocalExecutor(1))

@@ -271,9 +271,10 @@ def catalogue_tasks(seeds: int = 1, scenario_file: str = "", scenario_name: str 
 
 
 def run(tasks: list[Task], csv_path: pathlib.Path, executor=None, progress=sys.stderr,
-        label: str = "near-primitives") -> list[dict]:
+        label: str = "near-primitives", counts: dict | None = None) -> list[dict]:
     """Runs the tasks whose records are not yet in csv_path (resumable: each record is appended as it
-    arrives); returns the tasks' records, as read back, in task order."""
+    arrives); returns the tasks' records, as read back, in task order. With `counts`, adds how many
+    it computed to counts["computed"]."""
     from drake_grasp.experiments.executors import LocalExecutor
 
     scenarios = {}
@@ -301,6 +302,8 @@ def run(tasks: list[Task], csv_path: pathlib.Path, executor=None, progress=sys.s
             print(f"{label}: {done}/{total} {_short(task.object)} ({task.primitive}): " + _verdict(record) +
                   f" ({time.perf_counter() - start:.0f} s)", file=progress, flush=True)
     by_key = {(r["fingerprint"], r["object"], r["seed"]): r for r in results.rows()}
+    if counts is not None:
+        counts["computed"] = counts.get("computed", 0) + len(todo)
     return [by_key[(f, t.object, str(t.seed))] for t, f in zip(tasks, prints) if (f, t.object, str(t.seed)) in by_key]
 
 
@@ -507,12 +510,14 @@ def plot(groups: dict[str, list[Scored]], path: pathlib.Path, baseline: bool = F
 
 
 def report(records: dict[str, list[dict]], *, command: str, seeds: tuple[int, int], count: int,
-           figure: pathlib.Path, wall: float, cpu: float, workers: int, baseline=None,
+           figure: pathlib.Path, wall: float, cpu: float, workers: int, computed: int = 0, baseline=None,
            scorer_note: str = "") -> str:
-    """The study's Markdown summary (and its figure at `figure`).
+    """The study's Markdown summary (and its figure at `figure`, linked by its name).
 
     Args:
         records: {"perfect", "catalogue", "development", "evaluation"} -> records (`run`'s).
+        wall, cpu, workers, computed: this invocation's wall and CPU time (s), workers, and how many
+            explorations it computed (the rest were on disk).
         baseline: the scorer to compare with (statistics -> `rescore`'s dict), e.g. the scorer on main.
         scorer_note: what changed in the scorer, and why (a paragraph).
     """
@@ -532,8 +537,9 @@ def report(records: dict[str, list[dict]], *, command: str, seeds: tuple[int, in
         "placed with trial seed K's variation). "
         f"Development set: generator seed {seeds[0]}; evaluation set: generator seed {seeds[1]} "
         f"({count} objects per class each; object i of seed s is placed with trial seed 1000·s + i). "
-        f"Exploration wall time {recorded_wall / 60:.0f} min in all as recorded; this run {wall / 60:.1f} min wall, "
-        f"{cpu / 60:.1f} min CPU on {workers} worker(s).",
+        f"Exploration wall time {recorded_wall / 60:.0f} min in all as recorded (each on one worker); "
+        f"this invocation computed {computed} of them in {wall / 60:.1f} min wall, {cpu / 60:.1f} min CPU "
+        f"on {workers} worker(s).",
         "",
         "Resemblances are computed from each exploration's recorded silhouette statistics by the scorer of "
         "this version (`scores.evaluate`, what the primitive computes on its last view); for the "
@@ -727,3 +733,90 @@ def main_scorer(statistics, score_params=None) -> dict:
     out["best"] = max(scores.SHAPES, key=lambda s: out[s])
     out["evidence"] = evidence
     return out
+
+
+# --- The whole study ---------------------------------------------------------------------------------
+
+
+@dataclasses.dataclass
+class StudyConfig:
+    """Attributes:
+        count: near-primitives per class in each of the two sets.
+        seed: the development set's generator seed; eval_seed: the evaluation set's (must differ).
+        reference_seeds: trial seeds 0..N-1 for the perfect primitives and the paper's objects.
+        catalogue: include the paper's nine objects.
+        development_only: leave out the evaluation set (while a scorer is being developed).
+    """
+
+    count: int = 10
+    seed: int = 0
+    eval_seed: int = 1
+    reference_seeds: int = 3
+    catalogue: bool = True
+    development_only: bool = False
+
+    def validate(self) -> None:
+        """ValueError (one line) for a bad configuration."""
+        if self.count < 1:
+            raise ValueError(f"--count must be >= 1, got {self.count}")
+        if self.seed < 0 or self.eval_seed < 0:
+            raise ValueError("--seed and --eval-seed must be >= 0")
+        if self.seed == self.eval_seed:
+            raise ValueError(f"--eval-seed must differ from --seed ({self.seed}): the evaluation set must be "
+                             "new objects")
+        if self.reference_seeds < 1:
+            raise ValueError(f"--reference-seeds must be >= 1, got {self.reference_seeds}")
+
+    def command(self) -> str:
+        return (f"scripts/near_primitives_check.py --count {self.count} --seed {self.seed} --eval-seed "
+                f"{self.eval_seed} --reference-seeds {self.reference_seeds}"
+                + ("" if self.catalogue else " --skip-catalogue")
+                + (" --development-only" if self.development_only else ""))
+
+
+FIGURE = "near_primitives.png"
+
+
+def run_study(config: StudyConfig, out_dir: pathlib.Path, executor, progress=sys.stderr,
+              label: str = "near-primitives", command: str | None = None) -> str:
+    """Runs (or resumes) the study into out_dir (objects, explorations.csv) under its lock and writes
+    out_dir/summary.md with its figure out_dir/near_primitives.png; returns the summary's text.
+
+    Raises:
+        ValueError: a bad configuration; ResultsFileError, LockHeld: an unusable results folder (one
+            line each, before any work).
+    """
+    import os
+
+    from drake_grasp.experiments.lock import results_lock
+    from drake_grasp.experiments.results import check_results_file, write_atomically
+
+    config.validate()
+    csv_path = out_dir / "explorations.csv"
+    check_results_file(csv_path, FIELDS)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    start, times = time.perf_counter(), os.times()
+    cpu_start = times.user + times.system + times.children_user + times.children_system
+    counts = {"computed": 0}
+    with results_lock(out_dir):
+        dev = ensure_objects(out_dir / f"objects-seed{config.seed}", 4 * config.count, config.seed)
+        ev = [] if config.development_only else ensure_objects(
+            out_dir / f"objects-seed{config.eval_seed}", 4 * config.count, config.eval_seed)
+        perfect = ensure_objects(out_dir / "objects-perfect", 0, 0, perfect=True)
+        groups = {
+            "perfect": perfect_tasks(perfect, config.reference_seeds),
+            "catalogue": catalogue_tasks(config.reference_seeds) if config.catalogue else [],
+            "development": near_tasks(dev),
+            "evaluation": near_tasks(ev),
+        }
+        records = {name: run(tasks, csv_path, executor=executor, progress=progress, label=f"{label} {name}",
+                             counts=counts)
+                   for name, tasks in groups.items() if tasks}
+        times = os.times()
+        cpu = times.user + times.system + times.children_user + times.children_system - cpu_start
+        text = report(records, command=command or config.command(), seeds=(config.seed, config.eval_seed),
+                      count=config.count, figure=out_dir / FIGURE, wall=time.perf_counter() - start, cpu=cpu,
+                      workers=getattr(executor, "workers", 1), computed=counts["computed"], baseline=main_scorer,
+                      scorer_note=SCORER_NOTE)
+        write_atomically(out_dir / "summary.md", text)
+    return text
