@@ -242,7 +242,8 @@ def run_exploration(scenario: Scenario, config: PerceptionConfig | None = None, 
 
 
 def explore(scenario: Scenario, config: PerceptionConfig | None = None, object_spec: ObjectSpec | None = None,
-            *, look_at: np.ndarray | None = None, replay_html: str | None = None) -> ExplorationResult:
+            *, look_at: np.ndarray | None = None, replay_html: str | None = None,
+            on_finish=None) -> ExplorationResult:
     """Builds the exploration for `scenario` and runs it once.
 
     Deterministic: the same inputs give the same estimate (nothing here is random; per-trial
@@ -255,6 +256,9 @@ def explore(scenario: Scenario, config: PerceptionConfig | None = None, object_s
         look_at: the point the camera starts above (default: the placement's x, y — where the object
             is expected; a trial passes the nominal placement, not the varied one).
         replay_html: if given, write a Meshcat replay of the exploration there.
+        on_finish: if given, called as on_finish(exploration, root context) when the simulation has
+            ended, to read more than the estimate (a study reads the resemblance primitives'
+            statistics: `resemblance_statistics`).
     """
     config = config or scenario.perception
     wall_start = time.perf_counter()
@@ -283,6 +287,8 @@ def explore(scenario: Scenario, config: PerceptionConfig | None = None, object_s
         simulator.AdvanceTo(config.sequencer.total_time + 1.0)
     sim_wall = time.perf_counter() - sim_start
 
+    if on_finish is not None:
+        on_finish(exploration, context)
     state = sequencer.state(sequencer_context)
     timings = {
         "build_time": build_time,
@@ -294,6 +300,16 @@ def explore(scenario: Scenario, config: PerceptionConfig | None = None, object_s
     }
     return ExplorationResult(read_estimate(exploration, context, timings), X_WO_start,
                              object_body.EvalPoseInWorld(plant_context))
+
+
+def resemblance_statistics(exploration: Exploration, context, shape: str = "box"):
+    """The silhouette statistics (`scores.FeatureStatistics`) a resemblance primitive gathered, in
+    `context` (the exploration's root context): its resemblance is `scores.evaluate` of them. The
+    three primitives see the same views from the same latched frame, so any one of them will do."""
+    from drake_grasp.primitives.scores import FeatureStatistics
+
+    primitive = exploration.primitives.resemblance[shape]
+    return FeatureStatistics.from_vector(primitive.statistics_vector(primitive.GetMyContextFromRoot(context)))
 
 
 def read_estimate(exploration: Exploration, context, timings: dict | None = None) -> ObjectEstimate:

@@ -106,6 +106,10 @@ class ShapeResemblancePrimitive(VisualPrimitive):
         self.DeclareStateOutputPort("frame", self._frame)
         self.DeclareCameraRateUpdate()
 
+    def statistics_vector(self, context: Context) -> np.ndarray:
+        """The `scores.FeatureStatistics` vector gathered so far (zeros before EXPLORE)."""
+        return context.get_discrete_state(self._internal).get_value()[self._STATS].copy()
+
     def DoUpdate(self, context: Context, discrete_state, sample: CameraSample, new_sample: bool,
                  command: PrimitiveCommand, explore_time: float | None) -> np.ndarray:
         if command != PrimitiveCommand.EXPLORE:
