@@ -1,4 +1,5 @@
-"""The studies beyond the paper: capture (how much estimate error a grasp absorbs, in full dynamics).
+"""The studies beyond the paper: capture (how much estimate error a grasp absorbs, in full dynamics)
+and near-primitives (shape resemblance on almost-spheres, -boxes and -cylinders).
 
 Like the sweeps (`sweeps`), each runs many trials on an executor, resumably, into a results folder it
 holds the lock of, and prints a summary (or one JSON object with --json).
@@ -99,4 +100,52 @@ def _run_capture(args) -> int:
     else:
         print("\n".join(lines))
         print(f"capture: {len(maps)} maps, {trials} trials, {wall:.0f} s; {out / 'summary.md'}, {out / 'capture.png'}")
+    return 0
+
+
+def add_near_primitives(sub) -> None:
+    """`drake-grasp near-primitives`."""
+    study = sub.add_parser(
+        "near-primitives",
+        help="beyond the paper: is shape resemblance right on near-primitives (ellipsoids, rounded boxes, "
+        "tapered cylinders)?",
+        description="Generates near-primitives (ellipsoids within 10 %% of a sphere, rounded boxes, tapered and "
+        "rounded cylinders; COUNT per class) for a development and an evaluation seed and explores each with "
+        "the wrist camera as `resemble` does, beside the perfect primitives and the paper's nine objects. "
+        "Writes explorations.csv (resumable), summary.md (per-class accuracy with 95 %% intervals, confusion "
+        "tables) and near_primitives.png.",
+    )
+    study.add_argument("--count", type=int, default=10, help="near-primitives per class and seed (default 10)")
+    study.add_argument("--object-seed", type=int, default=0, help="the development set's generator seed (default 0)")
+    study.add_argument("--eval-seed", type=int, default=1, help="the evaluation set's generator seed (default 1)")
+    study.add_argument("--reference-seeds", type=int, default=3, metavar="N",
+                       help="trial seeds 0..N-1 for the perfect primitives and the paper's objects (default 3)")
+    study.add_argument("--skip-catalogue", action="store_true", help="leave out the paper's nine objects")
+    study.add_argument("--development-only", action="store_true",
+                       help="leave out the evaluation set (while a scorer is being developed on the other)")
+    add_executor_args(study)
+    add_common(study, scenario=False, seed=False)
+    study.set_defaults(run=_run_near_primitives, out_default="out/near-primitives")
+
+
+def _run_near_primitives(args) -> int:
+    from drake_grasp.experiments.near_primitives import StudyConfig, run_study
+
+    args.seed, args.quick = 0, False  # the trial seeds are 0..N-1 (--reference-seeds)
+    executor = check_sweep_args(args)
+    config = StudyConfig(count=args.count, seed=args.object_seed, eval_seed=args.eval_seed,
+                         reference_seeds=args.reference_seeds, catalogue=not args.skip_catalogue,
+                         development_only=args.development_only)
+    config.validate()
+    out = check_out_dir(args.out or args.out_default)
+    start = time.perf_counter()
+    with executor:
+        text = run_study(config, out, executor, label="near-primitives")
+    wall = time.perf_counter() - start
+    if args.json:
+        print(json.dumps({"summary_md": str(out / "summary.md"), "csv": str(out / "explorations.csv"),
+                          "wall_time": wall}))
+    else:
+        print(text)
+        print(f"near-primitives: {wall:.0f} s; {out / 'summary.md'}")
     return 0
