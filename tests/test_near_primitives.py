@@ -135,6 +135,7 @@ def test_bad_arguments():
 import pathlib  # noqa: E402
 
 from drake_grasp.experiments import near_primitives as study  # noqa: E402
+from drake_grasp.experiments import near_primitives_report as analysis  # noqa: E402
 from drake_grasp.primitives import scores, sphere_tolerances  # noqa: E402
 
 
@@ -173,7 +174,7 @@ def test_ideal_boxes_and_cylinders_keep_their_primitive():
 def test_main_scorer_is_the_old_formula_and_misses_a_near_sphere():
     stats = sphere_tolerances.ideal_statistics(trimesh.creation.icosphere(3).vertices * [0.055, 0.05, 0.046],
                                                0.7, 0.5)
-    old, new = study.main_scorer(stats.to_vector()), study.rescore(stats.to_vector())
+    old, new = analysis.main_scorer(stats.to_vector()), analysis.rescore(stats.to_vector())
     e = old["evidence"]
     assert old["sphere"] == pytest.approx(e.roundness * e.invariance_a * e.invariance_b)
     assert old["box"] == pytest.approx(1 - max(e.invariance_a, e.roundness * e.invariance_b))
@@ -195,10 +196,10 @@ def test_fingerprint_leaves_the_scorer_out():
 
 
 def _fake_record(obj, set_, shape_class, primitive, stats, seed=0):
-    best = study.rescore(stats.to_vector())
+    best = analysis.rescore(stats.to_vector())
     return {"fingerprint": "0" * 16, "set": set_, "object": obj, "class": shape_class, "primitive": primitive,
             "seed": str(seed), "found": "1", **{s: repr(best[s]) for s in scores.SHAPES}, "best": best["best"],
-            "scorer": study.scorer_fingerprint(), "statistics": json.dumps(stats.to_vector().tolist()),
+            "scorer": analysis.scorer_fingerprint(), "statistics": json.dumps(stats.to_vector().tolist()),
             "evidence": "{}", "errors": "{}", "wall_time": "1.0", "detail": ""}
 
 
@@ -211,13 +212,13 @@ def test_report_tables_and_figure_from_records(tmp_path):
         records.append(_fake_record(str(tmp_path / "objs" / row["file"]), "near", row["class"], row["primitive"], stats))
     records.append({**records[0], "object": "lost.obj", "found": "0", "statistics": "[]", "detail": "object not found"})
     figure = tmp_path / "np.png"
-    text = study.report({"development": records, "perfect": records[:1]}, command="x", seeds=(2, 3), count=1,
-                        figure=figure, wall=1.0, cpu=1.0, workers=1, baseline=study.main_scorer)
+    text = analysis.report({"development": records, "perfect": records[:1]}, command="x", seeds=(2, 3), count=1,
+                           figure=figure, wall=1.0, cpu=1.0, workers=1, baseline=analysis.main_scorer)
     assert figure.is_file() and figure.stat().st_size > 1000
     assert "| development | ellipsoid | sphere |" in text and "95 % CI" in text
     assert "| sphere | " in text and "none |" in text  # the confusion table, with the lost object
     assert "equal the re-scored ones" in text
-    acc = study.accuracy_rows(study.score_records(records))
+    acc = analysis.accuracy_rows(analysis.score_records(records))
     assert ("all sphere", "sphere", 1, 2) in acc  # the ideal ellipsoid right, the lost one not
 
 
@@ -248,8 +249,8 @@ def test_one_real_exploration_names_a_near_sphere(tmp_path):
     records = study.run([task], tmp_path / "explorations.csv")
     (record,) = records
     assert record["found"] == "1" and record["best"] == "sphere", record
-    scored = study.score_records(records, baseline=study.main_scorer)[0]
-    assert study.run_agrees(scored, study.scorer_fingerprint()) is True
+    scored = analysis.score_records(records, baseline=analysis.main_scorer)[0]
+    assert analysis.run_agrees(scored, analysis.scorer_fingerprint()) is True
     assert scored.chosen("before") != "sphere"  # the scorer on main missed it
     assert study.run([task], tmp_path / "explorations.csv") == records  # resumed, not run again
 
