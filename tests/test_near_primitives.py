@@ -135,11 +135,12 @@ def test_bad_arguments():
 import pathlib  # noqa: E402
 
 from drake_grasp.experiments import near_primitives as study  # noqa: E402
-from drake_grasp.primitives import scores  # noqa: E402
+from drake_grasp.experiments import near_primitives_report as analysis  # noqa: E402
+from drake_grasp.primitives import scores, sphere_tolerances  # noqa: E402
 
 
 def test_the_configured_sphere_scales_are_derived_from_the_10_percent_ellipsoids():
-    tau_s, tau_se = study.sphere_scales_from_ellipsoids()
+    tau_s, tau_se = sphere_tolerances.sphere_scales_from_ellipsoids()
     default = scores.ScoreParams()
     assert default.sphere_variation_scale == pytest.approx(tau_s, abs=1e-3)
     assert default.sphere_roundness_scale == pytest.approx(tau_se, abs=1e-3)
@@ -149,13 +150,13 @@ def test_the_configured_sphere_scales_are_derived_from_the_10_percent_ellipsoids
 
 @pytest.mark.parametrize("semi_axes", [[1.1, 1.1, 0.9], [1.1, 0.9, 0.9]])
 def test_the_extreme_10_percent_ellipsoids_are_at_one_half(semi_axes):
-    assert study.ellipsoid_evidence(np.array(semi_axes) * 0.05).sphere == pytest.approx(0.5, abs=0.005)
+    assert sphere_tolerances.ellipsoid_evidence(np.array(semi_axes) * 0.05).sphere == pytest.approx(0.5, abs=0.005)
 
 
 @pytest.mark.parametrize("semi_axes", [[1.05, 0.95, 0.92], [1.0, 1.0, 1.0], [1.08, 1.02, 0.95], [1.1, 1.0, 0.9],
                                        [1.0, 1.0, 0.9]])
 def test_ideal_ellipsoids_within_10_percent_are_spheres(semi_axes):
-    new = study.ellipsoid_evidence(np.array(semi_axes) * 0.05)
+    new = sphere_tolerances.ellipsoid_evidence(np.array(semi_axes) * 0.05)
     assert new.sphere > 0.5 and new.sphere == max(new.sphere, new.cylinder, new.box)
 
 
@@ -165,14 +166,15 @@ def test_ideal_boxes_and_cylinders_keep_their_primitive():
               "cylinder": [npr.tapered_cylinder_mesh(0.18, 0.035, 0.03), npr.rounded_cylinder_mesh(0.2, 0.03, 0.05, 0.2)]}
     for primitive, meshes in shapes.items():
         for mesh in meshes:
-            stats = study.ideal_statistics(np.asarray(mesh.vertices), 0.7, 0.5)
+            stats = sphere_tolerances.ideal_statistics(np.asarray(mesh.vertices), 0.7, 0.5)
             evidence = scores.evaluate(stats, scores.ScoreParams())
             assert max(scores.SHAPES, key=evidence.resemblance) == primitive, (primitive, mesh.extents, evidence)
 
 
 def test_main_scorer_is_the_old_formula_and_misses_a_near_sphere():
-    stats = study.ideal_statistics(trimesh.creation.icosphere(3).vertices * [0.055, 0.05, 0.046], 0.7, 0.5)
-    old, new = study.main_scorer(stats.to_vector()), study.rescore(stats.to_vector())
+    stats = sphere_tolerances.ideal_statistics(trimesh.creation.icosphere(3).vertices * [0.055, 0.05, 0.046],
+                                               0.7, 0.5)
+    old, new = analysis.main_scorer(stats.to_vector()), analysis.rescore(stats.to_vector())
     e = old["evidence"]
     assert old["sphere"] == pytest.approx(e.roundness * e.invariance_a * e.invariance_b)
     assert old["box"] == pytest.approx(1 - max(e.invariance_a, e.roundness * e.invariance_b))
@@ -194,10 +196,10 @@ def test_fingerprint_leaves_the_scorer_out():
 
 
 def _fake_record(obj, set_, shape_class, primitive, stats, seed=0):
-    best = study.rescore(stats.to_vector())
+    best = analysis.rescore(stats.to_vector())
     return {"fingerprint": "0" * 16, "set": set_, "object": obj, "class": shape_class, "primitive": primitive,
             "seed": str(seed), "found": "1", **{s: repr(best[s]) for s in scores.SHAPES}, "best": best["best"],
-            "scorer": study.scorer_fingerprint(), "statistics": json.dumps(stats.to_vector().tolist()),
+            "scorer": analysis.scorer_fingerprint(), "statistics": json.dumps(stats.to_vector().tolist()),
             "evidence": "{}", "errors": "{}", "wall_time": "1.0", "detail": ""}
 
 
@@ -206,17 +208,17 @@ def test_report_tables_and_figure_from_records(tmp_path):
     records = []
     for row in rows:
         mesh = trimesh.load(tmp_path / "objs" / row["file"], process=True)
-        stats = study.ideal_statistics(np.asarray(mesh.vertices), 0.7, 0.5, samples=11)
+        stats = sphere_tolerances.ideal_statistics(np.asarray(mesh.vertices), 0.7, 0.5, samples=11)
         records.append(_fake_record(str(tmp_path / "objs" / row["file"]), "near", row["class"], row["primitive"], stats))
     records.append({**records[0], "object": "lost.obj", "found": "0", "statistics": "[]", "detail": "object not found"})
     figure = tmp_path / "np.png"
-    text = study.report({"development": records, "perfect": records[:1]}, command="x", seeds=(2, 3), count=1,
-                        figure=figure, wall=1.0, cpu=1.0, workers=1, baseline=study.main_scorer)
+    text = analysis.report({"development": records, "perfect": records[:1]}, command="x", seeds=(2, 3), count=1,
+                           figure=figure, wall=1.0, cpu=1.0, workers=1, baseline=analysis.main_scorer)
     assert figure.is_file() and figure.stat().st_size > 1000
     assert "| development | ellipsoid | sphere |" in text and "95 % CI" in text
     assert "| sphere | " in text and "none |" in text  # the confusion table, with the lost object
     assert "equal the re-scored ones" in text
-    acc = study.accuracy_rows(study.score_records(records))
+    acc = analysis.accuracy_rows(analysis.score_records(records))
     assert ("all sphere", "sphere", 1, 2) in acc  # the ideal ellipsoid right, the lost one not
 
 
@@ -247,8 +249,8 @@ def test_one_real_exploration_names_a_near_sphere(tmp_path):
     records = study.run([task], tmp_path / "explorations.csv")
     (record,) = records
     assert record["found"] == "1" and record["best"] == "sphere", record
-    scored = study.score_records(records, baseline=study.main_scorer)[0]
-    assert study.run_agrees(scored, study.scorer_fingerprint()) is True
+    scored = analysis.score_records(records, baseline=analysis.main_scorer)[0]
+    assert analysis.run_agrees(scored, analysis.scorer_fingerprint()) is True
     assert scored.chosen("before") != "sphere"  # the scorer on main missed it
     assert study.run([task], tmp_path / "explorations.csv") == records  # resumed, not run again
 
@@ -258,7 +260,7 @@ def test_run_study_writes_summary_and_figure_and_resumes(tmp_path, monkeypatch):
     replaced by ideal silhouettes of a sphere (no simulation)."""
     from drake_grasp.experiments.executors import LocalExecutor
 
-    sphere = study.ideal_statistics(trimesh.creation.icosphere(2).vertices * 0.05, 0.7, 0.5, samples=7)
+    sphere = sphere_tolerances.ideal_statistics(trimesh.creation.icosphere(2).vertices * 0.05, 0.7, 0.5, samples=7)
 
     def fake_explore(task):
         record = _fake_record(task.object, task.set, task.shape_class, task.primitive, sphere, task.seed)

@@ -7,22 +7,28 @@ object placed with the trial seed's variation, `perception.explore`), and record
 resemblances, the chosen primitive (the highest resemblance) and the silhouette statistics the
 resemblances are computed from (`scores.FeatureStatistics`: per arc, the regression's sums).
 
+This module makes the records: the sets as tasks (`ensure_objects`, `near_tasks`, `perfect_tasks`,
+`catalogue_tasks`), one exploration (`explore_one`, in a worker), the resumable results file
+(`table`, `run`) and the whole study (`StudyConfig`, `run_study`: objects, explorations, then
+summary.md). What the records mean (re-scoring, accuracy, confusion, the report and its figure) is
+`near_primitives_report`; where the sphere score's tolerances come from is
+`primitives/sphere_tolerances.py`.
+
 The statistics do not depend on the scorer (the camera's motion never reads a resemblance), so a
 record's fingerprint leaves the scorer out (`exploration_fingerprint`): a changed scorer re-scores
-the recorded statistics (`scores.evaluate`, exactly what the primitive computes on the last view)
-instead of simulating again, and the run's own resemblances stay in the record with the scorer that
-made them (`scorer_fingerprint`), so the report can show that re-scoring and running agree.
+the recorded statistics (`near_primitives_report.rescore`) instead of simulating again, and the run's
+own resemblances stay in the record with the scorer that made them
+(`near_primitives_report.scorer_fingerprint`), so the report can show that re-scoring and running
+agree.
 
 Sets: ``near`` (the generated objects of one generator seed), ``perfect`` (Drake's exact sphere,
 cube and cylinder, and the generator's own perfect meshes: no departure, tessellated and loaded like
-the others) and ``catalogue`` (the paper's nine objects). The analysis (`summarise`) gives the
-accuracy per class and per primitive with 95 % Wilson intervals, a confusion table and a figure.
+the others) and ``catalogue`` (the paper's nine objects).
 """
 
 from __future__ import annotations
 
 import dataclasses
-import hashlib
 import json
 import math
 import pathlib
@@ -31,35 +37,12 @@ import time
 
 import numpy as np
 
+from drake_grasp.experiments import near_primitives_report as analysis
 from drake_grasp.experiments.results import ResultsTable
 
 SETS = ("near", "perfect", "catalogue")
 PERFECT_PRIMITIVES = {"sphere:0.09": "sphere", "cube:0.08": "box", "cylinder:0.065x0.18": "cylinder"}
 """Drake's exact shapes of sizes in the middle of the generator's ranges (argument -> primitive)."""
-
-SCORER_NOTE = """\
-**The scorer changed** (`primitives/scores.py`, issue 15). On main, the sphere hypothesis used the
-same strict tolerance as the cylinder's symmetry test (variation scale 0.04 in log area and
-eccentricity, roundness scale 0.15): a perfect sphere passes it, but an ellipsoid whose semi-axes are
-within 10 % of a common radius does not. Tilting such an ellipsoid by 40° changes its silhouette's
-area and eccentricity by up to 7 % each (combined variation V_a = 0.105 about the axis arc, V_b = 0.056
-about the ±29° cross arc, for ideal silhouettes), and from above it is up to 1.22 times as long as
-wide; the tessellated mesh adds about 0.03 (the perfect sphere mesh below). So the near-spheres were
-named boxes (variation: "not invariant") or cylinders ("invariant about one arc, not the other"): the
-recorded variations of the development set's ellipsoids were 0.02-0.08 about the axis arc, several
-times 0.04. Which features vary: both, by similar amounts (the fitted log-area and log-eccentricity
-curves of an ellipsoid move in opposite directions, both smoothly; a rounded box's both grow with a
-kink at the face-on view and vary 3-10 times more). The change: the sphere gets tolerances of its
-own, derived from the issue's definition of a near-sphere, not fitted to these measurements:
-sphere = exp(-[(V_a² + V_b²)/τ_S² + ((e0 - 1)/τ_Se)²]) with τ_S = 0.143 and τ_Se = 0.306, the values
-that put the two extreme 10 % ellipsoids (1.1, 1.1, 0.9 and 1.1, 0.9, 0.9, ideal silhouettes along the
-default arcs; `sphere_scales_from_ellipsoids`) at sphere = 1/2, so that every ellipsoid inside that
-family scores above 1/2; and the cylinder and box scores exclude a sphere by this same score
-(cylinder = max(I_a, R·I_b)·(1 - sphere), box = 1 - max(I_a, R·I_b, sphere)) instead of by the strict
-invariances. The strict tolerances stay where they matter: a cylinder's invariance about its axis and
-a flat box's non-invariance. Objects not round from above keep their scores (their sphere score is
-small from their eccentricity alone). The development set (generator seed 0) was used to find this;
-the evaluation set (another seed) was generated and explored only after the scorer was fixed."""
 
 FIELDS = ["fingerprint", "set", "object", "class", "primitive", "seed", "found", "sphere", "cylinder", "box",
           "best", "scorer", "statistics", "evidence", "errors", "wall_time", "detail"]
@@ -132,16 +115,6 @@ def without_block(yaml_text: str, key: str) -> str:
     return "".join(out)
 
 
-def scorer_fingerprint(scenario=None) -> str:
-    """The scorer: the scenario's score parameters and the text of `primitives/scores.py`."""
-    from drake_grasp.experiments.fingerprint import digest
-    from drake_grasp.primitives import scores
-
-    scenario = scenario or _scenario("", "default")
-    source = hashlib.sha256(pathlib.Path(scores.__file__).read_bytes()).hexdigest()
-    return digest("scorer", dataclasses.asdict(scenario.perception.scores), source)
-
-
 # --- One exploration (runs in a worker) --------------------------------------------------------------
 
 
@@ -160,7 +133,7 @@ def explore_one(task: Task) -> dict:
               "best": "", "statistics": [], "evidence": {}, "errors": {}, "detail": ""}
     try:
         scenario = _scenario(task.scenario_file, task.scenario_name)
-        record["scorer"] = scorer_fingerprint(scenario)
+        record["scorer"] = analysis.scorer_fingerprint(scenario)
         with pose_warnings_announced():
             spec = resolve_object(task.object)
         look_at = np.array([scenario.object.x, scenario.object.y, 0.0])
@@ -192,22 +165,6 @@ def explore_one(task: Task) -> dict:
         record.setdefault("scorer", "0")
     record["wall_time"] = time.perf_counter() - start
     return record
-
-
-# --- Re-scoring --------------------------------------------------------------------------------------
-
-
-def rescore(statistics, score_params=None) -> dict:
-    """The resemblances (and best shape) the current scorer gives recorded statistics:
-    {"sphere", "cylinder", "box", "best", "evidence"}."""
-    from drake_grasp.primitives import scores
-
-    params = score_params or _scenario("", "default").perception.scores
-    evidence = scores.evaluate(scores.FeatureStatistics.from_vector(np.asarray(statistics, float)), params)
-    out = {s: evidence.resemblance(s) for s in scores.SHAPES}
-    out["best"] = max(scores.SHAPES, key=lambda s: out[s])
-    out["evidence"] = evidence
-    return out
 
 
 # --- The sets ----------------------------------------------------------------------------------------
@@ -299,8 +256,8 @@ def run(tasks: list[Task], csv_path: pathlib.Path, executor=None, progress=sys.s
             record["fingerprint"] = fingerprint
             results.append([_csv_ready(record)])
             done += 1
-            print(f"{label}: {done}/{total} {_short(task.object)} ({task.primitive}): " + _verdict(record) +
-                  f" ({time.perf_counter() - start:.0f} s)", file=progress, flush=True)
+            print(f"{label}: {done}/{total} {analysis.short_name(task.object)} ({task.primitive}): "
+                  + _verdict(record) + f" ({time.perf_counter() - start:.0f} s)", file=progress, flush=True)
     by_key = {(r["fingerprint"], r["object"], r["seed"]): r for r in results.rows()}
     if counts is not None:
         counts["computed"] = counts.get("computed", 0) + len(todo)
@@ -324,415 +281,12 @@ def _finite(value):
     return value
 
 
-def _short(obj: str) -> str:
-    return pathlib.Path(obj).stem if ("/" in obj or obj.endswith(".obj")) else obj
-
-
 def _verdict(record: dict) -> str:
     if record.get("detail"):
         return f"no estimate ({record['detail']})"
     scores_text = " ".join(f"{s} {float(record[s]):.2f}" for s in ("sphere", "cylinder", "box"))
     mark = "right" if record["best"] == record["primitive"] else "WRONG"
     return f"{record['best']} ({scores_text}) {mark}"
-
-
-# --- Analysis ----------------------------------------------------------------------------------------
-
-
-@dataclasses.dataclass
-class Scored:
-    """One recorded exploration, scored: `after` by the current scorer (re-scored from its statistics),
-    `before` by the baseline scorer when one is given, and the run's own resemblances."""
-
-    record: dict
-    after: dict | None
-    before: dict | None
-
-    @property
-    def name(self) -> str:
-        return _short(self.record["object"])
-
-    @property
-    def primitive(self) -> str:
-        return self.record["primitive"]
-
-    @property
-    def found(self) -> bool:
-        return self.after is not None
-
-    def chosen(self, which: str = "after") -> str:
-        scored = getattr(self, which)
-        return scored["best"] if scored else "none"
-
-    def right(self, which: str = "after") -> bool:
-        return self.chosen(which) == self.primitive
-
-
-def score_records(records: list[dict], baseline=None, score_params=None) -> list[Scored]:
-    """Each record re-scored by the current scorer (and by `baseline`, a function statistics -> the
-    dict `rescore` returns). An exploration that found nothing scores None."""
-    out = []
-    for r in records:
-        statistics = r["statistics"] if isinstance(r["statistics"], list) else json.loads(r["statistics"])
-        found = str(r["found"]) in ("1", "True") and len(statistics) > 0
-        after = rescore(statistics, score_params) if found else None
-        before = baseline(statistics) if (found and baseline is not None) else None
-        out.append(Scored(r, after, before))
-    return out
-
-
-def run_agrees(scored: Scored, scorer: str) -> bool | None:
-    """Whether the run's own resemblances equal the re-scored ones (None: the run used another scorer)."""
-    if scored.record["scorer"] != scorer or not scored.found:
-        return None
-    return all(abs(float(scored.record[s]) - scored.after[s]) <= 1e-9 for s in ("sphere", "cylinder", "box"))
-
-
-def accuracy_rows(scored: list[Scored], which: str = "after") -> list[tuple[str, str, int, int]]:
-    """(class, primitive, right, n) per generator class, then per primitive ("all <primitive>")."""
-    from drake_grasp.geometry.near_primitives import CLASSES, PRIMITIVE_OF_CLASS
-
-    rows = []
-    for c in CLASSES:
-        members = [s for s in scored if s.record["class"] == c]
-        if members:
-            rows.append((c, PRIMITIVE_OF_CLASS[c], sum(s.right(which) for s in members), len(members)))
-    for p in ("sphere", "box", "cylinder"):
-        members = [s for s in scored if s.primitive == p]
-        if members:
-            rows.append((f"all {p}", p, sum(s.right(which) for s in members), len(members)))
-    return rows
-
-
-def confusion(scored: list[Scored], which: str = "after") -> dict:
-    """{true primitive: {chosen: count}} (chosen "none" when nothing was found)."""
-    table_ = {}
-    for s in scored:
-        row = table_.setdefault(s.primitive, {})
-        row[s.chosen(which)] = row.get(s.chosen(which), 0) + 1
-    return table_
-
-
-def _scores_text(scored: dict | None) -> str:
-    if scored is None:
-        return "not found"
-    return " / ".join(f"{scored[s]:.2f}" for s in ("sphere", "cylinder", "box"))
-
-
-def _mean_scores_text(scored: list) -> str:
-    found = [x for x in scored if x is not None]
-    if not found:
-        return "not found"
-    return " / ".join(f"{np.mean([x[s] for x in found]):.2f}" for s in ("sphere", "cylinder", "box"))
-
-
-def _params_text(record: dict, manifests: dict) -> str:
-    params = manifests.get(record["object"], {}).get("params")
-    if not params:
-        return ""
-    parts = []
-    for key, value in params.items():
-        if key == "yaw_deg":
-            continue
-        if isinstance(value, list):
-            parts.append(f"{key} " + "x".join(f"{1000 * v:.0f}" for v in value) + " mm")
-        elif key in ("radius", "diameter", "length", "fillet", "radius_big", "radius_small"):
-            parts.append(f"{key} {1000 * value:.0f} mm")
-        else:
-            parts.append(f"{key} {value:.2f}")
-    return ", ".join(parts)
-
-
-def _evidence_text(scored: Scored) -> str:
-    e = scored.after["evidence"]
-    return f"V_a {e.variation_a:.3f}, V_b {e.variation_b:.3f}, e0 {e.eccentricity_0:.2f}"
-
-
-def plot(groups: dict[str, list[Scored]], path: pathlib.Path, baseline: bool = False) -> pathlib.Path:
-    """Per set (a panel each), every object's three resemblances (current scorer), objects grouped by
-    class with the class as the band colour; the true primitive's marker ringed, a wrong choice
-    crossed in red; with `baseline`, the baseline scorer's resemblances as small grey marks."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.patches
-    import matplotlib.pyplot as plt
-
-
-    shapes = ("sphere", "cylinder", "box")
-    colours = {"sphere": "tab:blue", "cylinder": "tab:orange", "box": "tab:green"}
-    markers = {"sphere": "o", "cylinder": "s", "box": "^"}
-    band = {"ellipsoid": "#dbe9f6", "rounded_box": "#dcefdc", "tapered_cylinder": "#fde6cf",
-            "rounded_cylinder": "#f9d6b0", "primitive": "#eeeeee", "catalogue": "#f2f2f2"}
-    panels = [(name, members) for name, members in groups.items() if members]
-    width = max(8.0, 0.22 * max(len(m) for _, m in panels) + 2)
-    fig, axes = plt.subplots(len(panels), 1, figsize=(width, 2.4 * len(panels)), squeeze=False)
-    for ax, (name, members) in zip(axes[:, 0], panels):
-        members = sorted(members, key=lambda s: (s.record["class"], s.name, int(s.record["seed"])))
-        several_seeds = len({s.record["seed"] for s in members if s.record["set"] != "near"}) > 1
-        for x, s in enumerate(members):
-            ax.axvspan(x - 0.5, x + 0.5, color=band.get(s.record["class"], "#ffffff"), lw=0)
-            if not s.found:
-                ax.text(x, 0.5, "?", ha="center", va="center", color="red")
-                continue
-            for k, shape in enumerate(shapes):
-                dx = (k - 1) * 0.22
-                ax.scatter(x + dx, s.after[shape], marker=markers[shape], color=colours[shape], s=22, zorder=3,
-                           edgecolors="black" if shape == s.primitive else "none", linewidths=0.9)
-                if baseline and s.before is not None:
-                    ax.scatter(x + dx, s.before[shape], marker="_", color="0.45", s=30, zorder=2)
-            if not s.right():
-                ax.scatter(x, 1.08, marker="x", color="red", s=30, zorder=4, clip_on=False)
-        ax.set_xlim(-0.5, len(members) - 0.5)
-        ax.set_ylim(-0.03, 1.12)
-        ax.set_xticks(range(len(members)))
-        ax.set_xticklabels([s.name.split("_")[-1] if s.record["set"] == "near" else
-                            s.name.replace("_", "\n", 1) + (f" #{s.record['seed']}" if several_seeds else "")
-                            for s in members], fontsize=5.5, rotation=0 if name != "reference" else 60)
-        ax.set_ylabel("resemblance", fontsize=8)
-        ax.set_title(name, fontsize=9, loc="left")
-        ax.tick_params(axis="y", labelsize=7)
-    handles = [plt.Line2D([], [], marker=markers[s], color=colours[s], ls="", label=s) for s in shapes]
-    handles += [plt.Line2D([], [], marker="o", mfc="none", mec="black", ls="", label="true primitive"),
-                plt.Line2D([], [], marker="x", color="red", ls="", label="wrong choice")]
-    if baseline:
-        handles.append(plt.Line2D([], [], marker="_", color="0.45", ls="", label="scorer on main"))
-    handles += [matplotlib.patches.Patch(color=c, label=k.replace("_", " ")) for k, c in band.items()
-                if any(s.record["class"] == k for _, m in panels for s in m)]
-    fig.legend(handles=handles, loc="lower center", ncol=min(len(handles), 6), fontsize=7, frameon=False)
-    fig.tight_layout(rect=(0, 0.06, 1, 1))
-    path = pathlib.Path(path)
-    tmp = path.with_name(f".{path.name}.tmp.png")
-    fig.savefig(tmp, dpi=110)
-    plt.close(fig)
-    tmp.replace(path)
-    return path
-
-
-def report(records: dict[str, list[dict]], *, command: str, seeds: tuple[int, int], count: int,
-           figure: pathlib.Path, wall: float, cpu: float, workers: int, computed: int = 0, baseline=None,
-           scorer_note: str = "") -> str:
-    """The study's Markdown summary (and its figure at `figure`, linked by its name).
-
-    Args:
-        records: {"perfect", "catalogue", "development", "evaluation"} -> records (`run`'s).
-        wall, cpu, workers, computed: this invocation's wall and CPU time (s), workers, and how many
-            explorations it computed (the rest were on disk).
-        baseline: the scorer to compare with (statistics -> `rescore`'s dict), e.g. the scorer on main.
-        scorer_note: what changed in the scorer, and why (a paragraph).
-    """
-    from drake_grasp.experiments.stats import format_rate
-
-    scored = {name: score_records(rows, baseline) for name, rows in records.items()}
-    current = scorer_fingerprint()
-    agree = [run_agrees(s, current) for members in scored.values() for s in members]
-    checked = [a for a in agree if a is not None]
-    explorations = sum(len(v) for v in records.values())
-    recorded_wall = sum(float(r["wall_time"]) for v in records.values() for r in v)
-    lines = [
-        "# Shape resemblance on near-primitives",
-        "",
-        f"Made by `{command}` (issue 15, item 4): {explorations} explorations of the wrist camera, each as "
-        "`drake-grasp resemble --object OBJECT --seed K` runs it (default scenario and perception, the object "
-        "placed with trial seed K's variation). "
-        f"Development set: generator seed {seeds[0]}; evaluation set: generator seed {seeds[1]} "
-        f"({count} objects per class each; object i of seed s is placed with trial seed 1000·s + i). "
-        f"Exploration wall time {recorded_wall / 60:.0f} min in all as recorded (each on one worker); "
-        f"this invocation computed {computed} of them in {wall / 60:.1f} min wall, {cpu / 60:.1f} min CPU "
-        f"on {workers} worker(s).",
-        "",
-        "Resemblances are computed from each exploration's recorded silhouette statistics by the scorer of "
-        "this version (`scores.evaluate`, what the primitive computes on its last view); for the "
-        f"{len(checked)} records made by this very scorer, the run's own resemblances "
-        + ("equal the re-scored ones." if all(checked) else
-           f"differ from the re-scored ones in {len(checked) - sum(checked)} records (a bug)."),
-    ]
-    if scorer_note:
-        lines += ["", scorer_note]
-    sets = [n for n in ("development", "evaluation") if scored.get(n)]
-    if sets:
-        lines += ["", "## Accuracy: the chosen primitive is the object's primitive", "",
-                  "| set | class | primitive | " + ("scorer on main | " if baseline else "") + "this scorer |",
-                  "|---|---|---|" + ("---|" if baseline else "") + "---|"]
-        for name in sets:
-            before = {r[0]: r for r in accuracy_rows(scored[name], "before")} if baseline else {}
-            for c, p, k, n in accuracy_rows(scored[name]):
-                cells = [name, c.replace("_", " "), p]
-                if baseline:
-                    cells.append(format_rate(before[c][2], before[c][3]))
-                cells.append(("**" if c.startswith("all") else "") + format_rate(k, n) +
-                              ("**" if c.startswith("all") else ""))
-                lines.append("| " + " | ".join(cells) + " |")
-        lines += ["", "## Confusion (rows: true primitive; columns: chosen)", ""]
-        for name in sets:
-            for which in (("before", "after") if baseline else ("after",)):
-                table_ = confusion(scored[name], which)
-                label = {"before": "scorer on main", "after": "this scorer"}[which]
-                lines += [f"{name}, {label}:", "", "| true \\ chosen | sphere | cylinder | box | none |",
-                          "|---|---|---|---|---|"]
-                for p in ("sphere", "cylinder", "box"):
-                    if p in table_:
-                        lines.append(f"| {p} | " + " | ".join(str(table_[p].get(c, 0))
-                                                             for c in ("sphere", "cylinder", "box", "none")) + " |")
-                lines.append("")
-    for name, title in (("perfect", "Perfect primitives"), ("catalogue", "The paper's nine objects")):
-        members = scored.get(name)
-        if not members:
-            continue
-        seeds_run = sorted({int(s.record["seed"]) for s in members})
-        lines += ["", f"## {title}: mean resemblances sphere / cylinder / box, and the choice per trial seed "
-                  f"({', '.join(map(str, seeds_run))})", "",
-                  "| object | primitive | " + ("scorer on main | chosen | " if baseline else "") +
-                  "this scorer | chosen |", "|---|---|" + ("---|---|" if baseline else "") + "---|---|"]
-        by_object = {}
-        for s in members:
-            by_object.setdefault(s.name, []).append(s)
-        for obj, runs in by_object.items():
-            runs = sorted(runs, key=lambda s: int(s.record["seed"]))
-            cells = [obj, runs[0].primitive]
-            for which in (("before", "after") if baseline else ("after",)):
-                cells += [_mean_scores_text([getattr(s, which) for s in runs]),
-                          ", ".join(s.chosen(which) for s in runs)]
-            lines.append("| " + " | ".join(cells) + " |")
-        changed = [s for s in members if baseline and s.chosen("before") != s.chosen("after")]
-        if baseline:
-            lines += ["", f"Choices changed by this scorer: {len(changed)} of {len(members)} explorations" +
-                      (": " + ", ".join(f"{s.name} seed {s.record['seed']} ({s.chosen('before')} -> "
-                                        f"{s.chosen('after')})" for s in changed) if changed else ".")]
-    manifests = {}
-    for name in sets:
-        wrong = [s for s in scored[name] if not s.right()]
-        if wrong:
-            lines += ["", f"## Misclassified, {name} set", "",
-                      "| object | parameters | sphere / cylinder / box | chosen | evidence |", "|---|---|---|---|---|"]
-            for s in wrong:
-                manifests.update(_manifest_of(s.record["object"]))
-                lines.append(f"| {s.name} | {_params_text(s.record, manifests)} | {_scores_text(s.after)} | "
-                             f"{s.chosen()} | {_evidence_text(s) if s.found else s.record['detail']} |")
-    groups = {f"{n} set (generator seed {seeds[i]})": scored[n] for i, n in enumerate(("development", "evaluation"))
-              if scored.get(n)}
-    groups["reference"] = scored.get("perfect", []) + scored.get("catalogue", [])
-    plot(groups, figure, baseline=baseline is not None)
-    lines += ["", f"![resemblances per object]({figure.name})", "",
-              f"`{figure.name}`: per set, each object's three resemblances (this scorer), grouped by class "
-              "(band colour); the true primitive's marker is ringed, a wrong choice crossed in red at the top"
-              + ("; grey ticks: the scorer on main." if baseline else ".")]
-    return "\n".join(lines) + "\n"
-
-
-def _manifest_of(obj: str) -> dict:
-    """{file path: manifest row} of the generated object's folder (empty for a primitive or name)."""
-    path = pathlib.Path(obj)
-    manifest = path.parent / "manifest.json"
-    if not (path.suffix == ".obj" and manifest.is_file()):
-        return {}
-    return {str(path.parent / r["file"]): r for r in json.loads(manifest.read_text())}
-
-
-# --- The sphere's tolerances, from the definition of a near-sphere (pure) ---------------------------
-
-
-def silhouette_features(vertices: np.ndarray, view: np.ndarray) -> tuple[float, float]:
-    """(area, eccentricity) of the orthographic silhouette of the convex hull of `vertices` seen along
-    the unit direction `view`: the polygon's area and sqrt(λmax/λmin) of its central second moments
-    (what `vision.moments` measures on a mask)."""
-    from scipy.spatial import ConvexHull
-
-    view = np.asarray(view, float) / np.linalg.norm(view)
-    helper = np.array([1.0, 0.0, 0.0]) if abs(view[0]) < 0.9 else np.array([0.0, 1.0, 0.0])
-    u = np.cross(view, helper)
-    u /= np.linalg.norm(u)
-    w = np.cross(view, u)
-    points = np.column_stack([vertices @ u, vertices @ w])
-    polygon = points[ConvexHull(points).vertices]
-    x, y = polygon[:, 0], polygon[:, 1]
-    x1, y1 = np.roll(x, -1), np.roll(y, -1)
-    cross = x * y1 - x1 * y
-    area = cross.sum() / 2.0
-    cx, cy = ((x + x1) * cross).sum() / (6 * area), ((y + y1) * cross).sum() / (6 * area)
-    ixx = ((x * x + x * x1 + x1 * x1) * cross).sum() / 12.0 - area * cx * cx
-    iyy = ((y * y + y * y1 + y1 * y1) * cross).sum() / 12.0 - area * cy * cy
-    ixy = ((x * y1 + 2 * x * y + 2 * x1 * y1 + x1 * y) * cross).sum() / 24.0 - area * cx * cy
-    low, high = np.linalg.eigvalsh(np.array([[ixx, ixy], [ixy, iyy]]))
-    return float(abs(area)), float(math.sqrt(high / low))
-
-
-def _rotation(axis: np.ndarray, angle: float) -> np.ndarray:
-    k = np.array([[0.0, -axis[2], axis[1]], [axis[2], 0.0, -axis[0]], [-axis[1], axis[0], 0.0]])
-    return np.eye(3) + math.sin(angle) * k + (1.0 - math.cos(angle)) * k @ k
-
-
-def ideal_statistics(vertices: np.ndarray, amplitude_a: float, amplitude_b: float, samples: int = 21):
-    """The `scores.FeatureStatistics` of an ideal exploration of a convex body resting with its z up:
-    orthographic silhouettes from straight above, then along an arc of ±amplitude_a about the top
-    view's principal axis a and one of ±amplitude_b about the cross axis b (as the cylinder and sphere
-    primitives travel them), `samples` views each, no noise, no perspective."""
-    from drake_grasp.primitives import scores
-
-    vertices = np.asarray(vertices, float)
-    up = np.array([0.0, 0.0, 1.0])
-    # The top view's principal axis: the dominant eigenvector of the silhouette's horizontal spread.
-    hull = vertices[:, :2] - vertices[:, :2].mean(axis=0)
-    axis2 = np.linalg.eigh(hull.T @ hull)[1][:, 1]
-    a = np.array([axis2[0], axis2[1], 0.0])
-    b = np.cross(up, a)
-    stats = scores.FeatureStatistics()
-    for phi in np.linspace(-amplitude_a, amplitude_a, samples):
-        stats.add(phi, 0.0, *silhouette_features(vertices, _rotation(a, phi) @ up))
-    for phi in np.linspace(-amplitude_b, amplitude_b, samples):
-        stats.add(0.0, phi, *silhouette_features(vertices, _rotation(b, phi) @ up))
-    return stats
-
-
-def ellipsoid_evidence(semi_axes, amplitude_a: float = 0.7, amplitude_b: float = 0.5, score_params=None):
-    """`scores.evaluate` of the ideal exploration of an ellipsoid (semi-axes along x, y, z)."""
-    import trimesh
-
-    from drake_grasp.primitives import scores
-
-    unit = trimesh.creation.icosphere(subdivisions=3, radius=1.0).vertices
-    stats = ideal_statistics(unit * np.asarray(semi_axes, float), amplitude_a, amplitude_b)
-    return scores.evaluate(stats, score_params or scores.ScoreParams())
-
-
-def sphere_scales_from_ellipsoids(deviation: float = 0.10, amplitude_a: float = 0.7,
-                                  amplitude_b: float = 0.5) -> tuple[float, float]:
-    """(τ_S, τ_Se): the sphere hypothesis's tolerances that put the two extreme ellipsoids with
-    semi-axes within ±`deviation` of a common radius (resting on the smallest) at sphere = 1/2:
-
-    * the oblate one (1+d, 1+d, 1−d), round from above with the largest variation V:
-      (V_a² + V_b²) / τ_S² = ln 2;
-    * the prolate one (1+d, 1−d, 1−d), the most eccentric from above (e0):
-      (V_a² + V_b²) / τ_S² + ((e0 − 1) / τ_Se)² = ln 2.
-
-    Ideal silhouettes along the given arc amplitudes (default: the default scenario's ±40° and ±29°).
-    """
-    d = deviation
-    oblate = ellipsoid_evidence([1 + d, 1 + d, 1 - d], amplitude_a, amplitude_b)
-    prolate = ellipsoid_evidence([1 + d, 1 - d, 1 - d], amplitude_a, amplitude_b)
-    tau_s = math.sqrt((oblate.variation_a ** 2 + oblate.variation_b ** 2) / math.log(2.0))
-    rest = math.log(2.0) - (prolate.variation_a ** 2 + prolate.variation_b ** 2) / tau_s ** 2
-    return tau_s, (prolate.eccentricity_0 - 1.0) / math.sqrt(rest)
-
-
-def main_scorer(statistics, score_params=None) -> dict:
-    """The scorer as it was on main before issue 15 (sphere = R·I_a·I_b; cylinder = max(I_a(1 − R·I_b),
-    R·I_b(1 − R·I_a)); box = 1 − max(I_a, R·I_b)), kept here only to report before and after from the
-    same recorded statistics; the same dict as `rescore`."""
-    from drake_grasp.primitives import scores
-
-    params = score_params or scores.ScoreParams()
-    stats = scores.FeatureStatistics.from_vector(np.asarray(statistics, float))
-    evidence = scores.evaluate(stats, params)
-    if stats.count < params.min_samples:
-        out = {"sphere": 0.0, "cylinder": 0.0, "box": 0.0}
-    else:
-        i_a, i_b, r = evidence.invariance_a, evidence.invariance_b, evidence.roundness
-        out = {"sphere": r * i_a * i_b, "cylinder": max(i_a * (1 - r * i_b), r * i_b * (1 - r * i_a)),
-               "box": 1 - max(i_a, r * i_b)}
-    out["best"] = max(scores.SHAPES, key=lambda s: out[s])
-    out["evidence"] = evidence
-    return out
 
 
 # --- The whole study ---------------------------------------------------------------------------------
@@ -814,9 +368,10 @@ def run_study(config: StudyConfig, out_dir: pathlib.Path, executor, progress=sys
                    for name, tasks in groups.items() if tasks}
         times = os.times()
         cpu = times.user + times.system + times.children_user + times.children_system - cpu_start
-        text = report(records, command=command or config.command(), seeds=(config.seed, config.eval_seed),
-                      count=config.count, figure=out_dir / FIGURE, wall=time.perf_counter() - start, cpu=cpu,
-                      workers=getattr(executor, "workers", 1), computed=counts["computed"], baseline=main_scorer,
-                      scorer_note=SCORER_NOTE)
+        text = analysis.report(records, command=command or config.command(),
+                               seeds=(config.seed, config.eval_seed), count=config.count, figure=out_dir / FIGURE,
+                               wall=time.perf_counter() - start, cpu=cpu, workers=getattr(executor, "workers", 1),
+                               computed=counts["computed"], baseline=analysis.main_scorer,
+                               scorer_note=analysis.SCORER_NOTE)
         write_atomically(out_dir / "summary.md", text)
     return text

@@ -18,7 +18,8 @@ Every primitive takes a `command` (`common.PrimitiveCommand`) and outputs a desi
 
 Pure math, testable on arrays: `camera_model` (pinhole, twists, arcs), `silhouette` (features of a
 mask, the sample vector), `estimators` (rays, interpretation planes, tangent planes and the
-support-function fit), `scores` (the resemblance scores).
+support-function fit), `scores` (the resemblance scores), `sphere_tolerances` (where the sphere
+score's tolerances come from).
 """
 
 from drake_grasp.primitives.camera import SegmentationParams, SilhouetteCamera
