@@ -40,7 +40,7 @@ its own, derived from that definition of a near-sphere, not fitted to measuremen
 the two extreme ellipsoids whose semi-axes are within ±10 % of a common radius at sphere = 1/2, the
 oblate one (1.1, 1.1, 0.9: round from above, the largest variation) and the prolate one (1.1, 0.9,
 0.9: the most eccentric from above), both computed for ideal (orthographic) silhouettes along the
-default arcs (`experiments.near_primitives.sphere_scales_from_ellipsoids`); every other ellipsoid
+default arcs (`primitives.sphere_tolerances.sphere_scales_from_ellipsoids`); every other ellipsoid
 of that family then scores above 1/2. The cylinder and box hypotheses exclude a sphere by this same
 sphere score (before: by the strict invariances), so that "not invariant enough to be a sphere" and
 "a sphere" never disagree. An object that is not round from above has a small sphere score from its
