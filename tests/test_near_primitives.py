@@ -229,7 +229,7 @@ def test_script_bad_arguments_one_line_exit_2(capsys):
         "near_primitives_check", pathlib.Path(__file__).parents[1] / "scripts" / "near_primitives_check.py")
     script = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(script)
-    for argv, message in ((["--count", "0"], "--count must be >= 1"), (["--seed", "1"], "--eval-seed must differ"),
+    for argv, message in ((["--count", "0"], "--count must be >= 1"), (["--seed", "1"], "evaluation seed must differ"),
                           (["--workers", "0"], "--workers must be >= 1"), (["--report", "x.txt"], "expected a .md"),
                           (["--bogus"], "unrecognized arguments")):
         assert script.main(argv) == 2

@@ -316,8 +316,8 @@ class StudyConfig:
         if self.seed < 0 or self.eval_seed < 0:
             raise ValueError("--seed and --eval-seed must be >= 0")
         if self.seed == self.eval_seed:
-            raise ValueError(f"the evaluation seed must differ from the development seed ({self.seed}): the evaluation set must be "
-                             "new objects")
+            raise ValueError(f"the evaluation seed must differ from the development seed ({self.seed}): the "
+                             "evaluation set must be new objects")
         if self.reference_seeds < 1:
             raise ValueError(f"--reference-seeds must be >= 1, got {self.reference_seeds}")
 
