@@ -113,6 +113,21 @@ def object_sdf(spec: ObjectSpec, contact: ContactParameters | None = None) -> st
     )
 
 
+def with_mass_scale(spec: ObjectSpec, scale: float | None) -> ObjectSpec:
+    """The object with its mass and its rotational inertia about the centre of mass scaled by `scale`
+    (a denser or lighter body of the same shape): geometry, frame O (at the centre of mass), friction
+    and everything else unchanged. `scale` None or 1 returns `spec` itself.
+
+    Raises:
+        ValueError: `scale` not a finite number > 0.
+    """
+    if scale is None or scale == 1.0:
+        return spec
+    if not (math.isfinite(scale) and scale > 0):
+        raise ValueError(f"mass scale must be a finite number > 0, got {scale}")
+    return dataclasses.replace(spec, mass=spec.mass * scale, inertia=tuple(float(v) * scale for v in spec.inertia))
+
+
 def AddObject(plant, spec: ObjectSpec, contact: ContactParameters | None = None):
     """Adds the object to a MultibodyPlant (before Finalize) as a free body.
 

@@ -91,8 +91,26 @@ def camera_mount(station: Station) -> tuple:
     return frame, station.scenario.camera.X_PB.GetDeterministicValue()
 
 
+def trial_noise_seed(station: Station) -> int:
+    """The key of the camera noise's random stream for the trial this station was built for.
+
+    A trial's seed fixes its variation (object offset, yaw, friction scale: `trial.apply_variation`),
+    and the station holds the varied placement and object; their exact values (as text) are hashed
+    here to a 64-bit key, so the same trial seed gives the same noise, and different seeds give
+    different noise. (With every variation set to 0 all trials share one key; a caller that knows the
+    trial's seed may pass it to `AddVisualPrimitives` instead.)
+    """
+    import hashlib
+
+    placement = station.scenario.object
+    friction = station.object_spec.friction
+    text = repr((float(placement.x), float(placement.y), float(placement.yaw_deg),
+                 None if friction is None else float(friction)))
+    return int.from_bytes(hashlib.sha256(text.encode()).digest()[:8], "little")
+
+
 def AddVisualPrimitives(builder: DiagramBuilder, station: Station, config: PerceptionConfig,
-                        *, connect_arm: bool = True) -> VisualPrimitives:
+                        *, connect_arm: bool = True, noise_seed: int | None = None) -> VisualPrimitives:
     """Adds the fixed-rate camera, the primitives, the twist sum, the camera motion controller and
     the estimator that gathers the primitives' outputs.
 
@@ -106,12 +124,15 @@ def AddVisualPrimitives(builder: DiagramBuilder, station: Station, config: Perce
         config: the choices.
         connect_arm: False when the caller routes the camera motion to the arm itself (a supervisor
             that moves the arm after the exploration).
+        noise_seed: the key of the camera noise (`segmentation.color_noise`); None: the trial's own
+            key, from its varied placement (`trial_noise_seed`).
     """
     station_system = station.diagram
     intrinsics = CameraIntrinsics.from_camera_config(station.scenario.camera)
     period = config.period
     camera = builder.AddNamedSystem(
-        "silhouette_camera", SilhouetteCamera(intrinsics, object_labels(station), period, config.segmentation))
+        "silhouette_camera", SilhouetteCamera(intrinsics, object_labels(station), period, config.segmentation,
+                                              trial_noise_seed(station) if noise_seed is None else noise_seed))
     image_port = "camera.label_image" if config.segmentation.method == "label" else "camera.color_image"
     builder.Connect(station_system.GetOutputPort(image_port), camera.image_input_port())
     builder.Connect(station_system.GetOutputPort("camera.X_WC"), camera.GetInputPort("X_WC"))

@@ -31,6 +31,7 @@ import copy
 import dataclasses
 import math
 import pathlib
+import typing
 
 from pydrake.geometry import (
     MakeRenderEngineVtk,
@@ -48,6 +49,7 @@ from drake_grasp import arm
 from drake_grasp.contact import ContactParameters
 from drake_grasp.control.gravity_compensation import GravityCompensation
 from drake_grasp.control.hand_controller import HandController, HandControllerParams, SetHandActuatorGains
+from drake_grasp.object_model import with_mass_scale
 from drake_grasp.objects import AddObject, ObjectSpec, resolve_object
 from drake_grasp.paths import DIAGRAMS_DIR, RegisterPackage
 from drake_grasp.perception_config import PerceptionConfig
@@ -66,12 +68,17 @@ class ObjectPlacement:
             "cylinder:0.1x0.3") or a mesh file path.
         x, y: position of the object's centre on the table, world frame, m.
         yaw_deg: rotation about the vertical from the object's nominal resting pose, degrees.
+        mass_scale: multiplies the object's mass and its rotational inertia about its centre of mass
+            (same shape, same centre of mass: a denser or lighter body), e.g. 0.5 or 2.0 in the
+            sensitivity sweep. Omitted (None) = 1, the object's own mass; None is left out of the
+            scenario's YAML dump, so scenarios without it keep their fingerprints.
     """
 
     name: str = "soccer_ball"
     x: float = 0.55
     y: float = 0.0
     yaw_deg: float = 0.0
+    mass_scale: typing.Optional[float] = None
 
 
 @dataclasses.dataclass
@@ -146,6 +153,8 @@ def validate_scenario(scenario: Scenario) -> None:
     for name in ("x", "y", "yaw_deg"):
         if not math.isfinite(getattr(placement, name)):
             raise ValueError(f"object.{name} must be a finite number, got {getattr(placement, name)}")
+    if placement.mass_scale is not None and not (math.isfinite(placement.mass_scale) and placement.mass_scale > 0):
+        raise ValueError(f"object.mass_scale must be a finite number > 0, got {placement.mass_scale}")
     if len(scenario.arm.kp) != arm.NUM_JOINTS or len(scenario.arm.kd) != arm.NUM_JOINTS:
         raise ValueError(f"arm.kp and arm.kd need {arm.NUM_JOINTS} gains each")
     contact = scenario.contact
@@ -190,7 +199,8 @@ def MakeStation(scenario: Scenario, object_spec: ObjectSpec | None = None, *, ca
 
     Args:
         scenario: the scenario.
-        object_spec: the object, when already resolved (else from scenario.object.name).
+        object_spec: the object, when already resolved (else from scenario.object.name). The
+            station's object is this one with `scenario.object.mass_scale` applied (`Station.object_spec`).
         camera: add the wrist RgbdSensor (and a VTK renderer).
     """
     builder = DiagramBuilder()
@@ -200,7 +210,8 @@ def MakeStation(scenario: Scenario, object_spec: ObjectSpec | None = None, *, ca
     wam = plant.GetModelInstanceByName("wam")
     hand = plant.GetModelInstanceByName("hand")
 
-    spec = object_spec or resolve_object(scenario.object.name)
+    # The scenario's mass scale applies to the object the station simulates (never to a planner's model).
+    spec = with_mass_scale(object_spec or resolve_object(scenario.object.name), scenario.object.mass_scale)
     object_instance = AddObject(plant, spec, scenario.contact)
     (object_body_index,) = plant.GetBodyIndices(object_instance)
     object_body = plant.get_body(object_body_index)

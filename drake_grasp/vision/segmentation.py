@@ -10,7 +10,8 @@ Two sources of a mask, (docs/design.md §5.4):
   colour image in HSV. Drake's colour images are uint8 RGBA arrays of shape (H, W, 4).
 
 Either can keep only the largest connected component of the mask (drops stray pixels and other
-objects of the same colour).
+objects of the same colour). `add_image_noise` adds a camera's sensor noise to a colour image before
+thresholding (the sensitivity sweep's "colour with image noise").
 
 Image conventions: arrays are indexed ``[v, u]``, v = row (downward), u = column (to the right).
 All functions are pure, take plain numpy arrays and return a boolean mask of shape (H, W).
@@ -174,6 +175,36 @@ def mask_from_color(
         in_hue = (hue >= hue_low) | (hue <= hue_high)
     mask = in_hue & (saturation >= min_saturation) & (value >= min_value)
     return keep_largest_component(mask) if largest_component_only else mask
+
+
+def add_image_noise(rgba_image: np.ndarray, sigma: float, rng: np.random.Generator) -> np.ndarray:
+    """A uint8 colour image with additive Gaussian noise on its colour channels (a camera's sensor
+    noise), before segmentation.
+
+    Args:
+        rgba_image: uint8 array of shape (H, W, 3) or (H, W, 4) (Drake's ``ImageRgba8U.data``); alpha
+            is kept as it is.
+        sigma: standard deviation of the noise in 8-bit counts (0 returns an unchanged copy).
+        rng: the random stream (numpy Generator); the same stream gives the same image.
+
+    Returns:
+        A new uint8 array of the same shape: each colour value plus N(0, sigma^2), rounded and clipped
+        to [0, 255].
+
+    Raises:
+        ValueError: not a uint8 (H, W, 3|4) image, or sigma negative or not finite.
+    """
+    image = np.asarray(rgba_image)
+    if image.ndim != 3 or image.shape[2] not in (3, 4) or image.dtype != np.uint8:
+        raise ValueError(f"expected a uint8 colour image of shape (H, W, 3|4), got {image.dtype} {image.shape}")
+    if not (np.isfinite(sigma) and sigma >= 0):
+        raise ValueError(f"noise sigma must be a finite number >= 0, got {sigma}")
+    out = image.copy()
+    if sigma == 0:
+        return out
+    colour = image[..., :3].astype(np.float64) + rng.normal(0.0, sigma, size=image[..., :3].shape)
+    out[..., :3] = np.clip(np.rint(colour), 0, 255).astype(np.uint8)
+    return out
 
 
 def keep_largest_component(mask: np.ndarray, connectivity: int = 8) -> np.ndarray:
