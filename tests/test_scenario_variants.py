@@ -184,3 +184,19 @@ def test_noise_of_ten_counts_on_a_rendered_image_changes_the_mask_only_at_the_ed
     assert clean.sum() > 500
     overlap = (clean & noisy).sum() / (clean | noisy).sum()
     assert 0.9 < overlap < 1.0, overlap  # the noise moves some edge pixels, not the blob
+
+
+@pytest.mark.slow
+def test_a_noisy_colour_trial_gives_the_same_record_for_the_same_seed(short_scenario):
+    from drake_grasp.trial import run_compliant_trial
+
+    scenario = short_scenario
+    scenario.perception.segmentation = dataclasses.replace(
+        load_scenario(DEFAULT_SCENARIO_FILE, "color_segmentation").perception.segmentation,
+        color_noise=ColorNoise(sigma=10.0))
+    spec = resolve_object("sponge")
+    records = [dataclasses.asdict(run_compliant_trial(scenario, spec, seed=1)) for _ in range(2)]
+    for r in records:
+        r.pop("wall_time")
+    assert records[0] == records[1]
+    assert records[0]["estimate_source"] == "camera" and records[0]["resemblances"]
