@@ -124,7 +124,7 @@ def test_summary_has_rates_with_intervals_the_table_and_the_verdicts(tmp_path):
     config = S.SensitivityConfig(objects=objects, trials=4, conditions=conditions)
     text = "\n".join(S.summary_lines(table, config, 0.5, "Cost: test."))
     assert "Trials: **24** (4 per object and condition" in text
-    assert "| friction 0.3 | 0.3 (0.375) | x1 | base's | 50 % (4/8, 95 % CI 22-78 %) | slipped during hold 4 |" in text
+    assert "| friction 0.3 | 0.3 (0.375) | x1 | label image | 50 % (4/8, 95 % CI 22-78 %) | slipped during hold 4 |" in text
     assert "| apple | 4/4 (spherical 4) | 0/4 (spherical 4) | 3/4 (spherical 4) |" in text
     assert "flips (unsure): 4/8" not in text and "flips (sure)" not in text
     assert "Flip somewhere: " in text and "Cost: test." in text

@@ -350,7 +350,7 @@ def pair_friction(mu: float, other: float = HAND_FRICTION) -> float:
 
 
 def summary_lines(table: dict[str, dict[str, Cell]], config: SensitivityConfig, base_friction: float,
-                  cpu_note: str = "") -> list[str]:
+                  cpu_note: str = "", base_segmentation: str = "label") -> list[str]:
     """summary.md's text (Markdown)."""
     conditions, objects = config.conditions, config.objects
     n_total = sum(totals(table[c.name])[1] for c in conditions)
@@ -374,7 +374,7 @@ def summary_lines(table: dict[str, dict[str, Cell]], config: SensitivityConfig, 
         for cell in table[c.name].values():
             reasons.update(cell.failures)
         why = ", ".join(f"{k} {v}" for k, v in reasons.most_common()) or "none"
-        seg = {None: "base's", "label": "label image", "color": "colour"}[c.segmentation]
+        seg = {"label": "label image", "color": "colour"}.get(c.segmentation or base_segmentation, "?")
         if c.noise_sigma is not None:
             seg += f" + noise σ {_number(c.noise_sigma)}"
         lines.append(f"| {c.label} | {_number(mu)} ({pair_friction(mu):.3g}) | "
@@ -555,7 +555,8 @@ def run_sensitivity(config: SensitivityConfig, out_dir: pathlib.Path, workers: i
             mine = [(s, f) for s, f in zip(specs, prints) if s.scenario_name == c.name]
             rows_by_condition[c.name] = select(rows, [s for s, _ in mine], [f for _, f in mine])
         table = tabulate(rows_by_condition, config.objects)
-        lines = summary_lines(table, config, base.contact.friction, cost_note(cost, len(config.conditions)))
+        lines = summary_lines(table, config, base.contact.friction, cost_note(cost, len(config.conditions)),
+                              base.perception.segmentation.method)
         write_conditions_csv(out_dir / "conditions.csv", table, config.conditions)
         figures = plot(table, config.conditions, out_dir)
         summary = out_dir / "summary.md"
