@@ -377,7 +377,7 @@ def summary_lines(table: dict[str, dict[str, Cell]], config: SensitivityConfig, 
         seg = {"label": "label image", "color": "colour"}.get(c.segmentation or base_segmentation, "?")
         if c.noise_sigma is not None:
             seg += f" + noise σ {_number(c.noise_sigma)}"
-        lines.append(f"| {c.label} | {_number(mu)} ({pair_friction(mu):.3g}) | "
+        lines.append(f"| {c.label} | {_friction(mu)} ({pair_friction(mu):.3g}) | "
                      f"{'x' + _number(c.mass_scale) if c.mass_scale is not None else 'x1'} | {seg} | "
                      f"{format_rate(ok, n)} | {why} |")
     lines += ["", "## Per object (successes / trials; the grasps chosen)", "",
