@@ -558,7 +558,9 @@ def run_sensitivity(config: SensitivityConfig, out_dir: pathlib.Path, workers: i
         lines = summary_lines(table, config, base.contact.friction, cost_note(cost, len(config.conditions)),
                               base.perception.segmentation.method)
         write_conditions_csv(out_dir / "conditions.csv", table, config.conditions)
-        figures = plot(table, config.conditions, out_dir)
+        figures = plot(table, config.conditions, out_dir, title=(
+            f"The algorithm's chosen grasps, one factor changed at a time: {len(config.objects)} objects x "
+            f"{config.trials} trial{'s' if config.trials > 1 else ''} per condition"))
         summary = out_dir / "summary.md"
         write_atomically(summary, "# Sensitivity of the chosen grasps (friction, mass, perception)\n\n"
                          + "\n".join(lines) + "\n")
