@@ -409,8 +409,8 @@ def summary_lines(table: dict[str, dict[str, Cell]], config: SensitivityConfig, 
     flips = [f"{r.claim} ({r.across(conditions)})" for r in results if r.across(conditions).startswith("flips")]
     lines += ["", f"Hold in every condition: {'; '.join(holds) or 'none'}.", "",
               f"Flip somewhere: {'; '.join(flips) or 'none'}.", ""]
-    lines += [f"Friction is the object's coefficient (`contact.friction`, ±{20} % per trial as always); the hand "
-              f"and the table keep {HAND_FRICTION}, and Drake combines two coefficients as "
+    lines += ["Friction is the object's coefficient (`contact.friction`; each trial's seeded variation scales it, "
+              f"as always); the hand and the table keep {HAND_FRICTION}, and Drake combines two coefficients as "
               "2·μ1·μ2/(μ1 + μ2): the pair coefficient is in parentheses."]
     if cpu_note:
         lines += ["", cpu_note]
