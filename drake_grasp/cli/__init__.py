@@ -11,7 +11,7 @@ The commands, one module per kind (each adds its parsers and runs them):
 
 * `single`: demo, trial, plan-eigengrasp, resemble (one run in this process);
 * `sweeps`: fig4, fig6, fig7, novel, reproduce (many trials on an executor, resumable);
-* `studies`: capture, near-primitives (beyond the paper, the same way);
+* `studies`: capture, sensitivity, near-primitives (beyond the paper, the same way);
 * `object_tools`: objects generate;
 * `common`: the options and input checks they share, and how a single run's result is printed.
 """
@@ -45,6 +45,7 @@ def _parser() -> argparse.ArgumentParser:
     sweeps.add_fig7(sub)
     sweeps.add_novel(sub)
     studies.add_capture(sub)
+    studies.add_sensitivity(sub)
     studies.add_near_primitives(sub)
     sweeps.add_reproduce(sub)
     single.add_plan_eigengrasp(sub)

@@ -1,5 +1,6 @@
-"""The studies beyond the paper: capture (how much estimate error a grasp absorbs, in full dynamics)
-and near-primitives (shape resemblance on almost-spheres, -boxes and -cylinders).
+"""The studies beyond the paper: capture (how much estimate error a grasp absorbs, in full dynamics),
+sensitivity (the chosen grasps under other friction, mass and perception) and near-primitives (shape
+resemblance on almost-spheres, -boxes and -cylinders).
 
 Like the sweeps (`sweeps`), each runs many trials on an executor, resumably, into a results folder it
 holds the lock of, and prints a summary (or one JSON object with --json).
@@ -148,4 +149,77 @@ def _run_near_primitives(args) -> int:
     else:
         print(text)
         print(f"near-primitives: {wall:.0f} s; {out / 'summary.md'}")
+    return 0
+
+
+def add_sensitivity(sub) -> None:
+    """`drake-grasp sensitivity`."""
+    study = sub.add_parser(
+        "sensitivity",
+        help="beyond the paper: the chosen grasps under other friction, object mass and perception",
+        description="The algorithm's own grasp on each object, camera-driven, under one changed factor at a time: "
+        "the object's friction coefficient (0.3, 0.8, 1.0; Drake combines it with the hand's 0.5), its mass "
+        "(x0.5, x2), colour segmentation with and without image noise. Each condition is a named scenario "
+        "in conditions.yaml. Writes sensitivity.csv (resumable), summary.md (rates with 95 %% intervals, "
+        "which of the paper's claims hold or flip) and sensitivity.png.",
+    )
+    study.add_argument("--quick", action="store_true", help="3 objects (apple, banana, soccer ball), 1 trial each")
+    study.add_argument("--objects", metavar="NAME|PATH,...", help="comma-separated objects (default: the paper's nine)")
+    study.add_argument("--trials", type=int, help="trials per object and condition (default 4; quick 1)")
+    study.add_argument("--conditions", metavar="NAME,...", help="conditions to run (default: all; see --list)")
+    study.add_argument("--noise-sigma", type=float, help="image noise of the noisy colour condition, 8-bit counts "
+                       "(default 10)")
+    study.add_argument("--list", action="store_true", help="list the conditions and exit")
+    add_executor_args(study)
+    add_common(study)
+    study.set_defaults(run=_run_sensitivity, out_default="out/sensitivity")
+
+
+def _sensitivity_config(args):
+    """The SensitivityConfig the arguments ask for (UsageError or ValueError, one line, if bad)."""
+    from drake_grasp.experiments import sensitivity
+
+    trials = args.trials or (1 if args.quick else 4)
+    sigma = sensitivity.DEFAULT_NOISE_SIGMA if args.noise_sigma is None else args.noise_sigma
+    if not 0 <= sigma < float("inf"):
+        raise UsageError(f"--noise-sigma must be a finite number >= 0, got {args.noise_sigma}")
+    conditions = sensitivity.default_conditions(noise_sigma=sigma)
+    names = _names(args.conditions, "--conditions")
+    if names is not None:
+        known = {c.name: c for c in conditions}
+        unknown = [n for n in names if n not in known]
+        if unknown:
+            raise UsageError(f"--conditions: unknown {', '.join(unknown)} (choose from {', '.join(known)})")
+        conditions = tuple(known[n] for n in dict.fromkeys(names))
+    args.scale, args.largest_component = 1.0, False  # no mesh options here: objects_arg checks them
+    objects = objects_arg(args, sensitivity.QUICK_OBJECTS if args.quick else ())
+    scenario_file, scenario_name = scenario_args(args)
+    return sensitivity.SensitivityConfig(objects=objects, trials=trials, seed=args.seed, conditions=conditions,
+                                         scenario_file=scenario_file, scenario_name=scenario_name)
+
+
+def _run_sensitivity(args) -> int:
+    from drake_grasp.experiments import sensitivity
+    from drake_grasp.experiments.stats import format_rate
+
+    executor = check_sweep_args(args)
+    config = _sensitivity_config(args)
+    if args.list:
+        for c in config.conditions:
+            print(f"{c.name}: {c.label}")
+        return 0
+    out = check_out_dir(args.out or (args.out_default + ("-quick" if args.quick else "")))
+    start = time.perf_counter()
+    with executor:
+        result = sensitivity.run_sensitivity(config, out, args.workers, executor)
+    wall = time.perf_counter() - start
+    if args.json:
+        print(json.dumps(jsonable({"summary_md": str(result.summary), "figures": [str(p) for p in result.figures],
+                                   "trials": result.trials, "wall_time": wall})))
+        return 0
+    for c in config.conditions:
+        print(f"{c.label}: chosen grasps {format_rate(*sensitivity.totals(result.table[c.name]))}")
+    for r in result.claims:
+        print(f"{r.claim}: {r.across(config.conditions)}")
+    print(f"sensitivity: {result.trials} trials, {wall:.0f} s; {result.summary}, {result.figures[0]}")
     return 0

@@ -48,7 +48,7 @@ def run_compliant_trial(scenario: Scenario, spec: ObjectSpec, *, seed: int, gras
     station = MakeStation(scenario, spec, camera=True)
     builder = DiagramBuilder()
     builder.AddNamedSystem("station", station.diagram)
-    primitives = AddVisualPrimitives(builder, station, config, connect_arm=False)
+    primitives = AddVisualPrimitives(builder, station, config, connect_arm=False, noise_seed=seed)
     sequencer = AddExplorationSequencer(builder, primitives, config)
     q_start = start_configuration(station, start_camera_pose(nominal, config, config.depth.table_height), config)
     supervisor = AddCompliantGraspSupervisor(builder, station, primitives, sequencer, q_start,
