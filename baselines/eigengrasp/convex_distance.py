@@ -194,8 +194,11 @@ class ConvexPiecesDistance:
         value = np.concatenate((np.matmul(q_h, tables.star_rows[star]).reshape(K, 4, G),
                                 np.matmul(q_h, tables.facet_rows[facet]).reshape(K, 4, 4)), axis=2)
         inside = np.maximum(np.maximum(value[:, 0], value[:, 1]), np.maximum(value[:, 2], value[:, 3])) <= 0.0
-        inside[:, 0] &= inside[:, 1]  # the vertex's region is both its slots'; slot 0 stands for it
-        inside[:, 1] = False
+        # The vertex's region is all its slots'; slot 0 stands for it.
+        H = tables.vertex_slots
+        if H > 1:
+            inside[:, 0] = inside[:, :H].all(axis=1)
+            inside[:, 1:H] = False
         slot = inside.argmax(axis=1)
         pairs = np.arange(K)
         found = inside[pairs, slot]

@@ -39,6 +39,7 @@ from scipy.spatial import ConvexHull
 
 REGION_TOLERANCE = 1e-12  # m: region boundaries are inclusive by this much (rounding of w·q)
 MAX_STAR = 26  # most features tested per star; larger stars lose their last ones (see region_tables)
+MAX_VERTEX_SLOTS = 4  # a vertex region of up to 16 edges; vertices with more are left to the general path
 
 _NEVER = np.array([[0.0, 0.0, 0.0, -1.0]] * 4)  # region rows no point satisfies (w·q − h = 1)
 
@@ -159,20 +160,19 @@ def edge_feature(a: np.ndarray, b: np.ndarray, faces: list[tuple[np.ndarray, np.
     return rows, projector
 
 
-def vertex_features(v: np.ndarray, neighbours: np.ndarray, tolerance: float):
-    """The region rows of vertex v as two features of 4 rows each, both needed (2, 4, 4).
+def vertex_features(v: np.ndarray, neighbours: np.ndarray, slots: int, tolerance: float) -> np.ndarray:
+    """The region rows of vertex v as `slots` features of 4 rows each, all needed (slots, 4, 4).
 
-    The region is ê_w·(q − v) ≤ tolerance for each edge v → w (`neighbours`: (k, 3) the w). Up to 8
-    edges fit; short lists repeat their first row. With more than 8, both features are never
+    The region is ê_w·(q − v) ≤ tolerance for each edge v → w (`neighbours`: (k, 3) the w). Up to
+    4 `slots` edges fit; short lists repeat their first row. With more, no feature is ever
     satisfied (the vertex is then left to the general path).
     """
-    if len(neighbours) > 8:
-        return np.array([_NEVER, _NEVER])
+    if len(neighbours) > 4 * slots:
+        return np.tile(_NEVER, (slots, 1, 1))
     e = neighbours - v
     e /= np.linalg.norm(e, axis=1, keepdims=True)
     rows = np.column_stack([e, e @ v + tolerance])
-    rows = rows[np.minimum(np.arange(8), len(rows) - 1)]
-    return rows.reshape(2, 4, 4)
+    return rows[np.minimum(np.arange(4 * slots), len(rows) - 1)].reshape(slots, 4, 4)
 
 
 @dataclasses.dataclass
@@ -184,14 +184,15 @@ class RegionTables:
 
     Attributes:
         star_rows: (P V, 4, 4 G) region rows of each vertex's star, coefficient-major: element
-            [c, r G + g] is coefficient c ([w_x, w_y, w_z, h]) of row r of slot g. Slots 0 and 1
-            are the vertex (its region is both slots' rows; the query lets only slot 0 stand for
-            it), then its edges, its triangles and the edges opposite it; unused slots are never
-            satisfied.
+            [c, r G + g] is coefficient c ([w_x, w_y, w_z, h]) of row r of slot g. Slots
+            0..vertex_slots − 1 are the vertex (its region is all their rows; the query lets only
+            slot 0 stand for it), then its edges, its triangles and the edges opposite it; unused
+            slots are never satisfied.
         star_ids: (P V, G) each slot's feature (a row of ``projectors``).
         facet_rows: (P F, 4, 16) likewise for each qhull facet: the facet, then its three edges.
         facet_ids: (P F, 4).
         projectors: (features, 3, 4) [Π | Π a]; row 0 belongs to no region.
+        vertex_slots: slots a vertex's region takes (4 edges each).
     """
 
     star_rows: np.ndarray
@@ -199,6 +200,7 @@ class RegionTables:
     facet_rows: np.ndarray
     facet_ids: np.ndarray
     projectors: np.ndarray
+    vertex_slots: int
 
 
 def region_tables(hulls: list[ConvexHull], V: int, F: int, tolerance: float = REGION_TOLERANCE,
@@ -209,12 +211,15 @@ def region_tables(hulls: list[ConvexHull], V: int, F: int, tolerance: float = RE
         hulls: The pieces' hulls (points in the query's frame, m).
         V, F: Vertex and facet counts the pieces are padded to (at least each hull's).
         tolerance: Slack of the region boundaries, m.
-        max_star: Most slots of a star (the vertex's two included); a larger star loses its last
+        max_star: Most slots of a star (the vertex's included); a larger star loses its last
             features (its pairs may then need the general path).
     """
     registry: dict[tuple, int] = {}
     projectors: list[np.ndarray] = [np.zeros((3, 4))]
-    pieces = [_piece_features(h, tolerance) for h in hulls]
+    # A vertex's region takes ceil(edges / 4) slots, for the most edges any vertex has (up to 16).
+    most_edges = max(len(_edge_neighbours(flat_faces(h)).get(int(v), ())) for h in hulls for v in h.vertices)
+    vertex_slots = int(np.clip(-(-most_edges // 4), 1, MAX_VERTEX_SLOTS))
+    pieces = [_piece_features(h, vertex_slots, tolerance) for h in hulls]
     G = min(max(len(star) for piece in pieces for star in piece["stars"]), max_star)
     P = len(hulls)
     star_rows = np.tile(_NEVER, (P * V, G, 1, 1))
@@ -241,15 +246,26 @@ def region_tables(hulls: list[ConvexHull], V: int, F: int, tolerance: float = RE
         star_ids=star_ids,
         facet_rows=np.ascontiguousarray(facet_rows.transpose(0, 3, 2, 1)).reshape(P * F, 4, 16),
         facet_ids=facet_ids,
-        projectors=np.array(projectors))
+        projectors=np.array(projectors),
+        vertex_slots=vertex_slots)
 
 
-def _piece_features(hull: ConvexHull, tolerance: float) -> dict:
+def _edge_neighbours(faces) -> dict[int, list[int]]:
+    """Each vertex's neighbours along the faces' sides."""
+    neighbours: dict[int, set[int]] = {}
+    for _, cycle in faces:
+        for a, b in zip(cycle, cycle[1:] + cycle[:1]):
+            neighbours.setdefault(a, set()).add(b)
+            neighbours.setdefault(b, set()).add(a)
+    return {v: sorted(w) for v, w in neighbours.items()}
+
+
+def _piece_features(hull: ConvexHull, vertex_slots: int, tolerance: float) -> dict:
     """One piece's features: per hull vertex (hull.vertices order) its star, per qhull facet its
     facet, then its three edges.
 
-    A feature is (key, region rows (4, 4) [w, h], projector (3, 4)). A star: the vertex (two
-    features), its edges, the triangles at it, the edges opposite it in those triangles. The
+    A feature is (key, region rows (4, 4) [w, h], projector (3, 4)). A star: the vertex
+    (`vertex_slots` features), its edges, the triangles at it, the edges opposite it in those triangles. The
     triangles are those of `flat_faces` strip-triangulated; an edge is a side of a face (an edge
     between two triangles of one face is no feature: its region is empty).
     """
@@ -260,10 +276,7 @@ def _piece_features(hull: ConvexHull, tolerance: float) -> dict:
     for g, (_, cycle) in enumerate(faces):
         for a, b in zip(cycle, cycle[1:] + cycle[:1]):
             edge_faces.setdefault((min(a, b), max(a, b)), []).append(g)
-    neighbours: dict[int, list[int]] = {}
-    for a, b in edge_faces:
-        neighbours.setdefault(a, []).append(b)
-        neighbours.setdefault(b, []).append(a)
+    neighbours = _edge_neighbours(faces)
 
     def edge(a, b):
         faces_ab = edge_faces.get((min(a, b), max(a, b)))
@@ -280,13 +293,13 @@ def _piece_features(hull: ConvexHull, tolerance: float) -> dict:
             at_vertex.setdefault(v, []).append(i)
     stars = []
     for v in (int(v) for v in hull.vertices):
-        edges = [edge(v, w) for w in sorted(neighbours[v])]
+        edges = [edge(v, w) for w in neighbours[v]]
         if any(e is None for e in edges):  # the region needs every edge: leave it to the general path
-            vertex_rows = np.array([_NEVER, _NEVER])
+            vertex_rows = np.tile(_NEVER, (vertex_slots, 1, 1))
         else:
-            vertex_rows = vertex_features(points[v], points[sorted(neighbours[v])], tolerance)
+            vertex_rows = vertex_features(points[v], points[neighbours[v]], vertex_slots, tolerance)
         projector = np.column_stack([np.eye(3), points[v]])
-        star = [(("vertex", v, half), vertex_rows[half], projector) for half in (0, 1)]
+        star = [(("vertex", v, i), vertex_rows[i], projector) for i in range(vertex_slots)]
         star += [e for e in edges if e is not None]
         for i in at_vertex[v]:
             g, t = triangles[i]
