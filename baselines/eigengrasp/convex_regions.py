@@ -220,7 +220,7 @@ def region_tables(hulls: list[ConvexHull], V: int, F: int, tolerance: float = RE
     most_edges = max(len(_edge_neighbours(flat_faces(h)).get(int(v), ())) for h in hulls for v in h.vertices)
     vertex_slots = int(np.clip(-(-most_edges // 4), 1, MAX_VERTEX_SLOTS))
     pieces = [_piece_features(h, vertex_slots, tolerance) for h in hulls]
-    G = min(max(len(star) for piece in pieces for star in piece["stars"]), max_star)
+    G = max(min(max(len(star) for piece in pieces for star in piece["stars"]), max_star), vertex_slots)
     P = len(hulls)
     star_rows = np.tile(_NEVER, (P * V, G, 1, 1))
     star_ids = np.zeros((P * V, G), dtype=np.intp)
