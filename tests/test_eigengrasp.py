@@ -269,7 +269,8 @@ def _region_test_pieces(rng):
     pieces = []
     angle = 2 * np.pi * np.arange(24) / 24
     ring = np.column_stack([np.cos(angle), np.sin(angle)])
-    prism = np.vstack([np.column_stack([0.03 * ring, np.full(24, -0.02)]), np.column_stack([0.02 * ring, np.full(24, 0.03)])])
+    prism = np.vstack([np.column_stack([0.03 * ring, np.full(24, -0.02)]),
+                       np.column_stack([0.02 * ring, np.full(24, 0.03)])])
     for k, points in enumerate((prism, rng.normal(scale=0.03, size=(40, 3)), rng.normal(scale=0.02, size=(12, 3)))):
         path = _cached_hull_obj(f"region_piece{k}", points)
         pieces.append(ShapePiece("convex", (), p_OP=tuple(rng.uniform(-0.03, 0.03, 3)),

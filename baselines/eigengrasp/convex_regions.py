@@ -16,7 +16,8 @@ A point inside a region has its closest point on that feature, exactly: no other
 The query (convex_distance.py) tests, per (point, piece), the regions of a few features near the
 point: the *star* of the piece's vertex nearest to it (the vertex, its edges, the edges opposite it
 in its triangles, its triangles) and the piece's facet of largest plane distance (with its edges).
-On the planner's contacts one of them holds the closest point for all but about 1 pair in 10,000.
+On the planner's contacts one of them holds the closest point for all but a few pairs in 100,000
+(the rest go to the general path).
 
 Faces that qhull triangulates as fans (a flat face of a decomposed piece: one corner in 20+ triangles)
 are re-triangulated here as zig-zag strips, so that no vertex is in more than 4 triangles of one face
@@ -25,7 +26,8 @@ empty).
 
 Table layout, for a vectorised test: every feature has 4 region rows (coefficients w, offset h:
 inside when w·q − h ≤ 0 for all 4, tolerance included in h) and a 3 × 4 projector [Π | Π a] with
-q − x = Π q − Π a. Lengths in metres, in the frame the hulls are given in.
+q − x = Π q − Π a; a vertex takes one such feature per 4 of its edges (up to 16 edges), all needed.
+Lengths in metres, in the frame the hulls are given in.
 
 Pure numpy/scipy, no Drake.
 """

@@ -18,8 +18,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from baselines.eigengrasp.convex_distance import ConvexPiecesDistance  # noqa: F401 (its old home)
+from baselines.eigengrasp.convex_distance import ConvexPiecesDistance
 from drake_grasp.objects import ShapePiece
+
+__all__ = ["ANALYTIC_KINDS", "ConvexPiecesDistance", "PrimitiveDistance"]  # ConvexPiecesDistance: its old home
 
 ANALYTIC_KINDS = ("sphere", "box", "cylinder", "capsule")
 """Piece kinds handled here; the others need a geometry engine."""
