@@ -1,9 +1,10 @@
 """Benchmark: speed on meshes against the catalogue objects (the planner and the camera-driven trial).
 
-It makes two non-convex test meshes itself (seeded, about 10-15 cm): a *blob*, an icosphere with
-smooth random radial bumps, and a *tube*, an 18 mm capsule bent into a 230° arc; each is split into
-at most 10 convex pieces (``object_from_mesh(path, max_pieces=10)``, CoACD, cached). Then, for each
-object:
+It makes three non-convex test meshes itself (seeded, about 10-17 cm): a *blob*, an icosphere with
+smooth random radial bumps, a *tube*, an 18 mm capsule bent into a 230° arc, and *ring_0_012*, object
+12 of the novel-object generator's seed 0 (drake_grasp/geometry/novel.py, a torus of 17 cm), the
+one that splits into the full 10 pieces; each is split into at most 10 convex pieces
+(``object_from_mesh(path, max_pieces=10)``, CoACD, cached). Then, for each object:
 
 * the Eigengrasp planner (``contact`` energy): one plan of ``--steps`` annealing steps, its annealing
   rate in steps per second of wall time and of this process's CPU time (other processes on a shared
@@ -11,13 +12,14 @@ object:
 * one compliant trial (``trial.run``, method compliant, seed 0: wrist-camera exploration, decision, grasp,
   lift, hold), its wall and CPU time and its outcome.
 
-Each measurement is repeated ``--repeats`` times and the median reported. ``--before FILE`` adds a
+Each measurement is repeated ``--repeats`` times (trials: ``--trial-repeats``, default the same) and
+the median reported. ``--before FILE`` adds a
 previous run's JSON (e.g. of the code before a change, run with this script and ``PYTHONPATH``
 pointing at that code) as a "before" column; repeat it for several. Writes ``--out`` (Markdown) and the
 same stem ``.json``. With ``--no-trials`` the trial cells of this run stay empty (the previous runs' show).
 
-Run: .venv/bin/python scripts/bench_meshes.py [--steps N] [--repeats R] [--before FILE ...]
-     [--out docs/results/mesh_speed.md] [--label after]
+Run: .venv/bin/python scripts/bench_meshes.py [--steps N] [--repeats R] [--trial-repeats R]
+     [--before FILE ...] [--out docs/results/mesh_speed.md] [--label after]
 Not a test: the numbers depend on the machine and its load.
 """
 
@@ -40,12 +42,14 @@ except ModuleNotFoundError:  # Run from a checkout without installing the packag
     from drake_grasp.objects import object_from_mesh, paper_object
 from baselines.eigengrasp.planner import EigengraspPlanner
 from drake_grasp.objects import _convex_vertices
+from drake_grasp.geometry.novel import novel_object, obj_text
 from drake_grasp.station import DEFAULT_SCENARIO_FILE, load_scenario
 from drake_grasp import trial
 
 PLANNER_CATALOGUE = ("sponge", "spectacle_case", "bottle_case")
 TRIAL_CATALOGUE = ("bottle_case",)
 MAX_PIECES = 10
+NOVEL = (0, 12)  # (seed, index) of the generated mesh: a ring that CoACD splits into 10 pieces
 
 
 def blob_mesh(seed: int = 0, radius: float = 0.05, bumps: int = 20, amplitude: float = 0.6,
@@ -77,9 +81,13 @@ def tube_mesh(radius: float = 0.018, length: float = 0.22, bend: float = 4.0) ->
 def mesh_objects(directory: pathlib.Path) -> dict:
     """The test meshes as ObjectSpecs, by name."""
     specs = {}
-    for name, mesh in (("blob", blob_mesh()), ("tube", tube_mesh())):
+    novel = novel_object(*NOVEL)
+    for name, mesh in (("blob", blob_mesh()), ("tube", tube_mesh()), (novel.name, novel.mesh)):
         path = directory / f"{name}.obj"
-        mesh.export(path)
+        if name == novel.name:
+            path.write_text(obj_text(mesh))  # the generator's own file, as `objects generate` writes it
+        else:
+            mesh.export(path)
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")  # They are laid on a stable face; that is fine here.
             specs[name] = object_from_mesh(path, max_pieces=MAX_PIECES)
@@ -111,7 +119,8 @@ def median_of(runs: list[dict]) -> dict:
     return out
 
 
-def markdown(rows: dict, befores: list[dict], label: str, steps: int, repeats: int) -> str:
+def markdown(rows: dict, befores: list[dict], label: str, steps: int, repeats: int,
+             trial_repeats: int | None = None) -> str:
     def cell(name, key, fmt, source):
         value = (source or {}).get(name, {}).get(key)
         return "" if value is None else format(value, fmt)
@@ -119,10 +128,13 @@ def markdown(rows: dict, befores: list[dict], label: str, steps: int, repeats: i
     cols = [b["label"] for b in befores] + [label]
     sources = [b["rows"] for b in befores] + [rows]
     runs = f"medians of {repeats} runs" + "".join(f"; {b['repeats']} in {b['label']}" for b in befores)
+    if trial_repeats is not None and trial_repeats != repeats:
+        runs += f"; trials: {trial_repeats} in {label}"
     lines = [f"# Speed on meshes ({steps} planner steps; {runs})", "",
              "Made by `scripts/bench_meshes.py` on a shared 2-core machine: wall times are inflated by other "
-             "processes, CPU times much less. Meshes: the script's seeded blob and tube, at most "
-             f"{MAX_PIECES} convex pieces. Where the time goes, and what changed: "
+             "processes, CPU times much less. Meshes: the script's seeded blob and tube, and the novel-object "
+             f"generator's object {NOVEL[1]} of seed {NOVEL[0]} (a ring), at most {MAX_PIECES} convex pieces. "
+             "Where the time goes, and what changed: "
              "[mesh_speed_profile.md](mesh_speed_profile.md).", "",
              "## Eigengrasp planner (`contact` energy): annealing steps per CPU second (per wall second)", "",
              f"| object | pieces (vertices, {label}) | " + " | ".join(cols) + " |",
@@ -131,7 +143,7 @@ def markdown(rows: dict, befores: list[dict], label: str, steps: int, repeats: i
         if "steps_per_cpu_second" not in row:
             continue
         cells = [f"{cell(name, 'steps_per_cpu_second', '.0f', s)} ({cell(name, 'steps_per_second', '.0f', s)})"
-                 for s in sources]
+                 if cell(name, 'steps_per_cpu_second', '.0f', s) else "" for s in sources]
         lines.append(f"| {name} | {row['pieces']} | " + " | ".join(cells) + " |")
     lines += ["", "## Compliant trial (camera-driven, seed 0): CPU s (wall s), outcome", "",
               "| object | " + " | ".join(cols) + " |", "|---|" + "---|" * len(cols)]
@@ -155,6 +167,10 @@ def markdown(rows: dict, befores: list[dict], label: str, steps: int, repeats: i
             continue
         planner, trial = [], []
         for source in sources:
+            if "steps_per_cpu_second" not in source.get(name, {}):  # not measured in that run
+                planner.append("")
+                trial.append("")
+                continue
             catalogue = [source[c]["steps_per_cpu_second"] for c in PLANNER_CATALOGUE if c in source]
             planner.append(f"{source[name]['steps_per_cpu_second'] / statistics.mean(catalogue):.2f}")
             if source[name].get("failure") == "simulation error":
@@ -173,6 +189,7 @@ def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--steps", type=int, default=40_000)
     parser.add_argument("--repeats", type=int, default=3)
+    parser.add_argument("--trial-repeats", type=int, default=None, help="repeats of each trial (default: --repeats)")
     parser.add_argument("--no-trials", action="store_true", help="time the planner only")
     parser.add_argument("--before", metavar="FILE", action="append", default=[],
                         help="a previous run's JSON, shown as a column before this run's (repeatable)")
@@ -193,7 +210,8 @@ def main(argv=None) -> int:
             print(f"{name:15s} planner {row['steps_per_cpu_second']:6.0f} steps/cpu-s "
                   f"({row['steps_per_second']:6.0f} steps/s)", flush=True)
         if not args.no_trials and (name in TRIAL_CATALOGUE or name in meshes):
-            row |= median_of([time_trial(scenario, spec) for _ in range(args.repeats)])
+            trial_repeats = args.repeats if args.trial_repeats is None else args.trial_repeats
+            row |= median_of([time_trial(scenario, spec) for _ in range(trial_repeats)])
             print(f"{name:15s} trial {row['trial_cpu_time']:6.1f} cpu-s ({row['trial_wall_time']:6.1f} s) "
                   f"{row['grasp']} {'held' if row['success'] else row['failure']}", flush=True)
         rows[name] = row
@@ -201,8 +219,10 @@ def main(argv=None) -> int:
     out = pathlib.Path(args.out)
     out.parent.mkdir(parents=True, exist_ok=True)
     result = {"label": args.label, "steps": args.steps, "repeats": args.repeats, "rows": rows}
+    if not args.no_trials:
+        result["trial_repeats"] = args.repeats if args.trial_repeats is None else args.trial_repeats
     out.with_suffix(".json").write_text(json.dumps(result, indent=2) + "\n")
-    out.write_text(markdown(rows, befores, args.label, args.steps, args.repeats))
+    out.write_text(markdown(rows, befores, args.label, args.steps, args.repeats, result.get("trial_repeats")))
     print(f"wrote {out} and {out.with_suffix('.json')}")
     return 0
 

@@ -9,7 +9,7 @@ import trimesh.triangles
 import pytest
 from pydrake.math import RigidTransform, RotationMatrix
 
-from baselines.eigengrasp import annealing, eigengrasps, energy, search_space
+from baselines.eigengrasp import annealing, convex_regions, eigengrasps, energy, search_space
 from baselines.eigengrasp import virtual_contacts as vc
 from baselines.eigengrasp.object_distance import ConvexPiecesDistance, PrimitiveDistance
 from baselines.eigengrasp.planner import EigengraspPlanner, _add_unique
@@ -232,6 +232,104 @@ def test_convex_piece_distances_are_exact(monkeypatch):
     assert any(stage_two)
     np.testing.assert_allclose(d2, reference, atol=1e-9)
     np.testing.assert_allclose(g2, g, atol=1e-6)
+
+
+def test_strip_triangulation_of_a_polygon_has_no_fan():
+    for m in (3, 4, 5, 8, 25):
+        cycle = list(range(10, 10 + m))
+        triangles = convex_regions.strip_triangles(cycle)
+        assert len(triangles) == m - 2
+        assert all(len(set(t)) == 3 and set(t) <= set(cycle) for t in triangles)
+        # A convex polygon (regular, in the plane): the triangles tile it.
+        angle = 2 * np.pi * np.arange(m) / m
+        xy = dict(zip(cycle, np.column_stack([np.cos(angle), np.sin(angle)])))
+        area = sum(0.5 * abs(np.linalg.det(np.array([xy[b] - xy[a], xy[c] - xy[a]]))) for a, b, c in triangles)
+        assert area == pytest.approx(0.5 * m * np.sin(2 * np.pi / m))
+        counts = np.bincount([v - 10 for t in triangles for v in t])
+        assert counts.max() <= 4  # a fan would put one vertex in all m − 2
+
+
+def test_flat_faces_of_a_hull_group_its_coplanar_triangles():
+    from scipy.spatial import ConvexHull
+    # A 20-sided prism: two 20-gon caps (fans in qhull) and 20 rectangles.
+    angle = 2 * np.pi * np.arange(20) / 20
+    ring = np.column_stack([np.cos(angle), np.sin(angle)])
+    hull = ConvexHull(np.vstack([np.column_stack([ring, np.zeros(20)]), np.column_stack([ring, np.ones(20)])]))
+    faces = convex_regions.flat_faces(hull)
+    assert sorted(len(cycle) for _, cycle in faces) == [4] * 20 + [20, 20]
+    for equation, cycle in faces:
+        np.testing.assert_allclose(hull.points[cycle] @ equation[:3] + equation[3], 0.0, atol=1e-12)
+        # Consecutive cycle vertices are neighbours on the boundary (a side, not a diagonal).
+        sides = np.linalg.norm(np.diff(hull.points[cycle + cycle[:1]], axis=0), axis=1)
+        assert sides.max() < 1.01  # 20-gon sides 0.31, rectangle sides 0.31 and 1
+
+
+def _region_test_pieces(rng):
+    """Posed convex pieces with flat faces of many vertices (fans in qhull) and random ones."""
+    pieces = []
+    angle = 2 * np.pi * np.arange(24) / 24
+    ring = np.column_stack([np.cos(angle), np.sin(angle)])
+    prism = np.vstack([np.column_stack([0.03 * ring, np.full(24, -0.02)]),
+                       np.column_stack([0.02 * ring, np.full(24, 0.03)])])
+    for k, points in enumerate((prism, rng.normal(scale=0.03, size=(40, 3)), rng.normal(scale=0.02, size=(12, 3)))):
+        path = _cached_hull_obj(f"region_piece{k}", points)
+        pieces.append(ShapePiece("convex", (), p_OP=tuple(rng.uniform(-0.03, 0.03, 3)),
+                                 rpy_OP=tuple(rng.uniform(-1, 1, 3)), mesh_path=path))
+    return pieces
+
+
+def test_convex_distances_by_regions_match_the_general_path_and_brute_force():
+    rng = np.random.default_rng(11)
+    pieces = _region_test_pieces(rng)
+    distance = ConvexPiecesDistance(pieces)
+    points = rng.uniform(-0.2, 0.2, (4000, 3))
+    exact = _brute_force_distances(pieces, points)
+    points, exact = points[exact > 1e-4][:1900], exact[exact > 1e-4][:1900]  # outside every piece
+    assert len(points) == 1900
+    # Near the surface too, where edges and vertices are the closest features.
+    _, g = distance(points[:399])
+    near = points[:399] - exact[:399, None] * g * rng.uniform(0.9, 0.999, (399, 1))
+    points = np.vstack([points, near])
+    exact = np.concatenate([exact, _brute_force_distances(pieces, near)])
+    for batch in np.split(np.arange(len(points)), len(points) // 19):  # the planner's 19 contacts
+        d, g = distance(points[batch])
+        d_ref, g_ref = distance._general(points[batch], *_products_and_lower(distance, points[batch]))
+        np.testing.assert_allclose(d, exact[batch], atol=1e-9)
+        np.testing.assert_allclose(d, d_ref, rtol=0.0, atol=1e-14)  # the previous algorithm's
+        np.testing.assert_allclose(g, g_ref, rtol=0.0, atol=1e-9)
+    assert distance.general_calls <= 2  # the regions settle (almost) every call
+    # A point inside a piece takes the general path: a negative distance.
+    inside = np.vstack([points[:18], [pieces[0].X_OP.translation()]])
+    calls = distance.general_calls
+    d, g = distance(inside)
+    assert d[-1] < 0.0 and distance.general_calls == calls
+    np.testing.assert_array_equal(d, distance._general(inside, *_products_and_lower(distance, inside))[0])
+    # A star cut short (no edge, no triangle) falls back where it must and stays exact.
+    short = ConvexPiecesDistance(pieces, max_star=1)
+    for batch in points[:380].reshape(-1, 19, 3):
+        np.testing.assert_allclose(short(batch)[0], distance(batch)[0], rtol=0.0, atol=1e-14)
+    assert short.general_calls > 0
+
+
+def test_convex_piece_regions_cover_the_exterior_of_one_piece():
+    """Each point outside a piece lies in the region of one of its features: the star of its nearest
+    vertex or the maximising facet almost always; the projector gives the closest point."""
+    rng = np.random.default_rng(12)
+    path = _cached_hull_obj("region_single", rng.normal(scale=0.03, size=(64, 3)))
+    piece = ShapePiece("convex", (), p_OP=(0.0, 0.0, 0.0), rpy_OP=(0.0, 0.0, 0.0), mesh_path=path)
+    distance = ConvexPiecesDistance([piece])
+    points = rng.normal(scale=0.08, size=(1900, 3))
+    points = points[_brute_force_distances([piece], points) > 1e-5][:19 * 80]
+    for batch in points.reshape(-1, 19, 3):
+        found = distance._from_regions(batch, *_products_and_lower(distance, batch))
+        assert found is not None
+        np.testing.assert_allclose(found[0], _brute_force_distances([piece], batch), atol=1e-12)
+
+
+def _products_and_lower(distance, q):
+    P, F, V = distance._shape
+    products = q @ distance._rows_T + distance._row_offsets
+    return products, products[:, :P * F].reshape(len(q), P, F).max(axis=2)
 
 
 def test_scene_collision_test_and_distances_for_a_convex_object():

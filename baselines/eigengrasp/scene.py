@@ -97,6 +97,7 @@ class HandObjectScene:
                                         for n in hand.HAND_JOINTS.all])
         self._q = plant.GetPositions(self._plant_context).copy()
         self._primitive_distance = PrimitiveDistance(spec.pieces)
+        self._convex_only = self._convex_distance is not None and not self._primitive_distance.num_pieces
 
     @property
     def uses_drake_distances(self) -> bool:
@@ -138,12 +139,15 @@ class HandObjectScene:
             (distance (19,) m, negative inside; unit outward gradient (19, 3) of the object's
             distance at each contact: the direction from the closest object point to the contact).
         """
-        distance, gradient = self._primitive_distance(points_O)
-        if self._convex_distance is not None:
-            d, g = self._convex_distance(points_O)
-            closer = d < distance
-            distance = np.where(closer, d, distance)
-            gradient = np.where(closer[:, None], g, gradient)
+        if self._convex_only:
+            distance, gradient = self._convex_distance(points_O)  # nothing to merge
+        else:
+            distance, gradient = self._primitive_distance(points_O)
+            if self._convex_distance is not None:
+                d, g = self._convex_distance(points_O)
+                closer = d < distance
+                distance = np.where(closer, d, distance)
+                gradient = np.where(closer[:, None], g, gradient)
         if not self._drake_pieces:
             return distance, gradient
         distance, gradient = distance.copy(), gradient.copy()
