@@ -6,6 +6,7 @@ import json
 import pytest
 
 from drake_grasp.experiments import sensitivity as S
+from drake_grasp.experiments import sensitivity_report as R
 from drake_grasp.experiments.fingerprint import scenario_fingerprint
 from drake_grasp.station import load_scenario
 
@@ -90,12 +91,12 @@ def _table():
         "friction_0.3": _rows("apple", [0, 0, 0, 0]) + _rows("soccer_ball", [1, 1, 1, 1], chosen="box"),
         "friction_0.8": _rows("apple", [1, 1, 1, 0]) + _rows("soccer_ball", [1, 1, 1, 1]),
     }
-    return S.tabulate(rows, objects), conditions, objects
+    return R.tabulate(rows, objects), conditions, objects
 
 
 def test_claims_hold_or_flip_per_condition():
     table, conditions, objects = _table()
-    results = {r.claim: r for r in S.claims(table, conditions, objects)}
+    results = {r.claim: r for r in R.claims(table, conditions, objects)}
     overall = results["Fig. 6: the algorithm's chosen grasps succeed"]
     assert overall.per_condition["base"].verdict == "holds"
     assert overall.per_condition["base"].certainty == "unsure"  # 8/8: the interval reaches 67.6 %
@@ -113,8 +114,8 @@ def test_claims_hold_or_flip_per_condition():
 
 def test_a_condition_without_trials_is_not_judged():
     table, conditions, objects = _table()
-    table["friction_0.8"] = {o: S.Cell() for o in objects}
-    overall = S.claims(table, conditions, objects)[0]
+    table["friction_0.8"] = {o: R.Cell() for o in objects}
+    overall = R.claims(table, conditions, objects)[0]
     assert overall.per_condition["friction_0.8"].verdict == "n/a"
     assert overall.across(conditions) == "flips under friction 0.3"
 
@@ -122,29 +123,29 @@ def test_a_condition_without_trials_is_not_judged():
 def test_summary_has_rates_with_intervals_the_table_and_the_verdicts(tmp_path):
     table, conditions, objects = _table()
     config = S.SensitivityConfig(objects=objects, trials=4, conditions=conditions)
-    text = "\n".join(S.summary_lines(table, config, 0.5, "Cost: test."))
+    text = "\n".join(R.summary_lines(table, config, 0.5, "Cost: test."))
     assert "Trials: **24** (4 per object and condition" in text
     assert "| friction 0.3 | 0.3 (0.375) | x1 | label image | 50 % (4/8, 95 % CI 22-78 %) | slipped during hold 4 |" in text
     assert "| apple | 4/4 (spherical 4) | 0/4 (spherical 4) | 3/4 (spherical 4) |" in text
     assert "flips (unsure): 4/8" not in text and "flips (sure)" not in text
     assert "Flip somewhere: " in text and "Cost: test." in text
-    S.write_conditions_csv(tmp_path / "conditions.csv", table, conditions)
+    R.write_conditions_csv(tmp_path / "conditions.csv", table, conditions)
     lines = (tmp_path / "conditions.csv").read_text().splitlines()
     assert lines[2].startswith("friction_0.3,friction,friction 0.3,4,8,0.5000,")
-    paths = S.plot(table, conditions, tmp_path)
+    paths = R.plot(table, conditions, tmp_path)
     assert all(p.stat().st_size > 1000 for p in paths)
 
 
 def test_pair_friction_is_drakes_combination():
-    assert S.pair_friction(0.5) == 0.5
-    assert S.pair_friction(0.3) == pytest.approx(0.375)
-    assert S.pair_friction(1.0) == pytest.approx(2 / 3)
+    assert R.pair_friction(0.5) == 0.5
+    assert R.pair_friction(0.3) == pytest.approx(0.375)
+    assert R.pair_friction(1.0) == pytest.approx(2 / 3)
 
 
 def test_cost_note_scales_to_the_full_sweep():
-    note = S.cost_note({"trials": 10, "cpu_seconds": 200.0, "wall_seconds": 150.0}, conditions=8)
+    note = R.cost_note({"trials": 10, "cpu_seconds": 200.0, "wall_seconds": 150.0}, conditions=8)
     assert "20.0 CPU-seconds per trial" in note and "288 trials" in note and "1.6 core-hours" in note
-    assert S.cost_note({}, 8) == ""
+    assert R.cost_note({}, 8) == ""
 
 
 # --- A tiny real sweep --------------------------------------------------------------------------------
@@ -157,7 +158,7 @@ def test_a_tiny_real_sweep_runs_resumes_and_writes_its_report(tmp_path, short_sc
     progress = io.StringIO()
     result = S.run_sensitivity(config, tmp_path / "out", workers=1, progress=progress)
     assert result.trials == 2
-    assert {name: S.totals(cells)[1] for name, cells in result.table.items()} == {"base": 1, "mass_x2": 1}
+    assert {name: R.totals(cells)[1] for name, cells in result.table.items()} == {"base": 1, "mass_x2": 1}
     assert "sensitivity: 2/2 sponge compliant/ seed 0" in progress.getvalue()
     out = tmp_path / "out"
     for name in ("conditions.yaml", "sensitivity.csv", "conditions.csv", "cost.json", "summary.md",

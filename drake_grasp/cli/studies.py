@@ -200,6 +200,7 @@ def _sensitivity_config(args):
 
 def _run_sensitivity(args) -> int:
     from drake_grasp.experiments import sensitivity
+    from drake_grasp.experiments.sensitivity_report import totals
     from drake_grasp.experiments.stats import format_rate
 
     executor = check_sweep_args(args)
@@ -218,7 +219,7 @@ def _run_sensitivity(args) -> int:
                                    "trials": result.trials, "wall_time": wall})))
         return 0
     for c in config.conditions:
-        print(f"{c.label}: chosen grasps {format_rate(*sensitivity.totals(result.table[c.name]))}")
+        print(f"{c.label}: chosen grasps {format_rate(*totals(result.table[c.name]))}")
     for r in result.claims:
         print(f"{r.claim}: {r.across(config.conditions)}")
     print(f"sensitivity: {result.trials} trials, {wall:.0f} s; {result.summary}, {result.figures[0]}")
