@@ -20,7 +20,7 @@ from drake_grasp.perception import trial_noise_seed
 from drake_grasp.primitives.camera import ColorNoise, SegmentationParams, SilhouetteCamera
 from drake_grasp.primitives.camera_model import CameraIntrinsics
 from drake_grasp.station import DEFAULT_SCENARIO_FILE, MakeStation, load_scenario
-from drake_grasp.vision import add_image_noise, mask_from_color
+from drake_grasp.vision import add_image_noise
 
 EXISTING = ("default", "step_10ms", "point_contact", "color_segmentation")
 
