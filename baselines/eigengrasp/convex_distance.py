@@ -142,9 +142,12 @@ class ConvexPiecesDistance:
         self.compiled = compiled
         # The compiled loop's arguments: plain contiguous float64/int64 arrays.
         tables = self._regions
+        centres = self._vertices.mean(axis=1)
+        radii = np.linalg.norm(self._vertices - centres[:, None], axis=2).max(axis=1) * (1.0 + 1e-12) + 1e-12
         self._kernel_arguments = (
-            np.ascontiguousarray(self._normals), np.ascontiguousarray(offsets.reshape(-1)),
-            np.ascontiguousarray(vertex_rows), np.einsum("vj,vj->v", vertex_rows, vertex_rows), P, F, V,
+            np.ascontiguousarray(self._normals.T), np.ascontiguousarray(offsets.reshape(-1)),
+            np.ascontiguousarray(vertex_rows.T), np.einsum("vj,vj->v", vertex_rows, vertex_rows),
+            np.ascontiguousarray(centres), radii, P, F, V,
             np.ascontiguousarray(tables.star_rows, dtype=float), tables.star_ids.astype(np.int64),
             np.ascontiguousarray(tables.facet_rows, dtype=float), tables.facet_ids.astype(np.int64),
             np.ascontiguousarray(tables.projectors, dtype=float), int(tables.vertex_slots), _SLACK)
