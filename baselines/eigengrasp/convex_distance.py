@@ -31,7 +31,6 @@ import numpy as np
 import trimesh
 from scipy.spatial import ConvexHull
 
-from baselines.eigengrasp.convex_kernel import region_distances
 from baselines.eigengrasp.convex_regions import MAX_STAR, REGION_TOLERANCE, region_tables
 from drake_grasp.objects import ShapePiece
 
@@ -140,6 +139,9 @@ class ConvexPiecesDistance:
                                              axis=2).reshape(P * F, 12)
         self._regions = region_tables(hulls, V, F, REGION_TOLERANCE, max_star)
         self.compiled = compiled
+        if compiled:  # numba (~0.4 s to import) only where a mesh needs it
+            from baselines.eigengrasp.convex_kernel import region_distances
+            self._kernel = region_distances
         # The compiled loop's arguments: plain contiguous float64/int64 arrays.
         tables = self._regions
         centres = self._vertices.mean(axis=1)
@@ -171,7 +173,7 @@ class ConvexPiecesDistance:
         if self.compiled and N:
             q = np.ascontiguousarray(q)
             distance, gradient = np.empty(N), np.empty((N, 3))
-            if region_distances(q, *self._kernel_arguments, distance, gradient):
+            if self._kernel(q, *self._kernel_arguments, distance, gradient):
                 return distance, gradient
             # Not settled: the numpy paths below decide (the region path fails there too).
         # In place: a second array of this size would cost more than the product (numpy's
