@@ -311,6 +311,56 @@ def test_convex_distances_by_regions_match_the_general_path_and_brute_force():
     assert short.general_calls > 0
 
 
+def test_compiled_convex_distances_match_the_numpy_path():
+    """The numba loop (convex_kernel.py) gives the numpy region path's distances and gradients to
+    rounding, on points far, near the surface (edges and vertices closest) and inside; a call it
+    cannot settle (a point inside) goes to the numpy general path, as before."""
+    from baselines.eigengrasp.convex_kernel import region_distances
+    rng = np.random.default_rng(13)
+    coarse = []  # the posed pieces of test_convex_piece_distances_are_exact
+    for k, n in enumerate((6, 20, 40)):
+        path = _cached_hull_obj(f"test_piece{k}", np.random.default_rng(5 + k).normal(scale=0.03, size=(n, 3)))
+        coarse.append(ShapePiece("convex", (), p_OP=tuple(rng.uniform(-0.03, 0.03, 3)),
+                                 rpy_OP=tuple(rng.uniform(-1, 1, 3)), mesh_path=path))
+    for pieces in (_region_test_pieces(np.random.default_rng(11)), coarse):
+        compiled, reference = ConvexPiecesDistance(pieces), ConvexPiecesDistance(pieces, compiled=False)
+        assert compiled.compiled and not reference.compiled
+        far = rng.uniform(-0.2, 0.2, (1900, 3))
+        d_far = _brute_force_distances(pieces, far)
+        outside = far[d_far > 1e-4][:19 * 40]
+        d_out, g_out = reference(outside)
+        # Near the surface, both sides of it (some points inside a piece).
+        near = outside - d_out[:, None] * g_out * rng.uniform(0.95, 1.05, (len(outside), 1))
+        near += rng.normal(scale=1e-4, size=near.shape)
+        close = rng.uniform(-0.06, 0.06, (1900, 3))
+        inside = close[_brute_force_distances(pieces, close) < -1e-4][:19 * 5]
+        assert len(outside) == 19 * 40 and len(inside) == 19 * 5
+        points = np.vstack([outside, near, inside])
+        points = points[rng.permutation(len(points))]
+        points = np.vstack([outside[:19 * 20], points])  # whole calls outside, then mixed ones
+        settled = 0
+        for batch in points[:len(points) // 19 * 19].reshape(-1, 19, 3):
+            d, g = compiled(batch)
+            d_ref, g_ref = reference(batch)
+            np.testing.assert_allclose(d, d_ref, rtol=0.0, atol=1e-12)
+            np.testing.assert_allclose(g, g_ref, rtol=0.0, atol=1e-12)
+            # The kernel alone, where it settles the call: the numpy region path's values. It
+            # settles every call of points outside every piece and none with a point inside.
+            d_k, g_k = np.empty(19), np.empty((19, 3))
+            ok = region_distances(np.ascontiguousarray(batch), *compiled._kernel_arguments, d_k, g_k)
+            products, lower = _products_and_lower(reference, batch)
+            if lower.min() <= 0.0:
+                assert not ok
+            elif ok:
+                settled += 1
+                found = reference._from_regions(batch, products, lower)
+                if found is not None:
+                    np.testing.assert_allclose(d_k, found[0], rtol=0.0, atol=1e-12)
+                    np.testing.assert_allclose(g_k, found[1], rtol=0.0, atol=1e-12)
+                np.testing.assert_allclose(d_k, d_ref, rtol=0.0, atol=1e-12)
+        assert settled >= 20  # the calls of outside points at least
+
+
 def test_convex_piece_regions_cover_the_exterior_of_one_piece():
     """Each point outside a piece lies in the region of one of its features: the star of its nearest
     vertex or the maximising facet almost always; the projector gives the closest point."""

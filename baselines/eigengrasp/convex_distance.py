@@ -70,13 +70,16 @@ class ConvexPiecesDistance:
     """
 
     def __init__(self, pieces: tuple[ShapePiece, ...] | list[ShapePiece], tolerance: float = 1e-9,
-                 max_star: int = MAX_STAR):
+                 max_star: int = MAX_STAR, compiled: bool = True):
         """
         Args:
             pieces: "convex" pieces (each its mesh_path's vertices, posed by X_OP).
             tolerance: Slack of the general path's in-triangle and optimality tests, m.
             max_star: Most features of a vertex's star the region path tests
                 (convex_regions.region_tables); a larger star may leave its pairs to the general path.
+            compiled: Run the region path as the compiled loop of convex_kernel.py (same results,
+                to rounding); False: the numpy reference below. Either way a call the region path
+                cannot settle takes the numpy general path.
         """
         hulls = []
         for piece in pieces:
@@ -135,6 +138,21 @@ class ConvexPiecesDistance:
                                               np.einsum("pfej,pfej->pfe", triangles, triangles)],
                                              axis=2).reshape(P * F, 12)
         self._regions = region_tables(hulls, V, F, REGION_TOLERANCE, max_star)
+        self.compiled = compiled
+        if compiled:  # numba (~0.4 s to import) only where a mesh needs it
+            from baselines.eigengrasp.convex_kernel import region_distances
+            self._kernel = region_distances
+        # The compiled loop's arguments: plain contiguous float64/int64 arrays.
+        tables = self._regions
+        centres = self._vertices.mean(axis=1)
+        radii = np.linalg.norm(self._vertices - centres[:, None], axis=2).max(axis=1) * (1.0 + 1e-12) + 1e-12
+        self._kernel_arguments = (
+            np.ascontiguousarray(self._normals.T), np.ascontiguousarray(offsets.reshape(-1)),
+            np.ascontiguousarray(vertex_rows.T), np.einsum("vj,vj->v", vertex_rows, vertex_rows),
+            np.ascontiguousarray(centres), radii, P, F, V,
+            np.ascontiguousarray(tables.star_rows, dtype=float), tables.star_ids.astype(np.int64),
+            np.ascontiguousarray(tables.facet_rows, dtype=float), tables.facet_ids.astype(np.int64),
+            np.ascontiguousarray(tables.projectors, dtype=float), int(tables.vertex_slots), _SLACK)
         self.general_calls = 0  # calls the region path could not settle (for benchmarks and tests)
 
     @property
@@ -152,6 +170,12 @@ class ConvexPiecesDistance:
         """
         q = np.asarray(points_O, dtype=float)
         N, (P, F, _) = len(q), self._shape
+        if self.compiled and N:
+            q = np.ascontiguousarray(q)
+            distance, gradient = np.empty(N), np.empty((N, 3))
+            if self._kernel(q, *self._kernel_arguments, distance, gradient):
+                return distance, gradient
+            # Not settled: the numpy paths below decide (the region path fails there too).
         # In place: a second array of this size would cost more than the product (numpy's
         # temporary elision checks arrays over 256 KiB with a slow stack walk).
         products = q @ self._rows_T
