@@ -174,12 +174,12 @@ class Trial:
 
 
 def run_capture(config: CaptureConfig, out_dir: pathlib.Path, executor, progress=sys.stderr,
-                scenario_file: str = "", scenario_name: str = "default") -> tuple[dict, list[Trial]]:
+                scenario_file: str = "", scenario_name: str = "default") -> tuple[dict, list[Trial], int]:
     """Runs (or resumes) the study: rounds of trials until every quadtree is complete. Returns
-    ({Cell: (Quadtree, {point: success})}, every trial)."""
+    ({Cell: (Quadtree, {point: success})}, every trial, how many of them were read back from disk)."""
     from drake_grasp.experiments import fig7
     from drake_grasp.experiments.results import check_results_file
-    from drake_grasp.experiments.runner import TRIAL_FIELDS, fingerprints, run_trials
+    from drake_grasp.experiments.runner import TRIAL_FIELDS, TRIAL_KEY, fingerprints, run_trials, spec_key, trial_table
 
     csv = out_dir / "capture.csv"  # the caller (`run`) holds the folder's lock
     check_results_file(csv, TRIAL_FIELDS)
@@ -193,6 +193,7 @@ def run_capture(config: CaptureConfig, out_dir: pathlib.Path, executor, progress
                                   label="capture")
     maps = {c: (config.quadtree(c.plane), {}) for c in cells(config, planner_label)}
     trials = []
+    reused = 0
     for round_number in range(1, config.depth + 2):
         todo = []
         for cell, (tree, results) in maps.items():
@@ -212,6 +213,9 @@ def run_capture(config: CaptureConfig, out_dir: pathlib.Path, executor, progress
             break
         specs = [s for _, _, s in todo]
         prints = fingerprints(specs)
+        on_disk = {tuple(str(r[k]) for k in TRIAL_KEY) for r in trial_table(csv, read_only=True).rows()} \
+            if csv.is_file() else set()
+        reused += sum(tuple(str(v) for v in spec_key(s, f)) in on_disk for s, f in zip(specs, prints))
         rows = run_trials(specs, csv, label=f"capture round {round_number}", executor=executor, progress=progress)
         by_key = {(r["fingerprint"], r["object"], r["method"], r["grasp"]): r for r in rows}
         for (cell, point, spec), fingerprint in zip(todo, prints):
@@ -219,7 +223,7 @@ def run_capture(config: CaptureConfig, out_dir: pathlib.Path, executor, progress
             held = str(row["success"]) in ("1", "True")  # as read back from the CSV
             maps[cell][1][point] = held
             trials.append(Trial(cell, point, spec, fingerprint, held))
-    return maps, trials
+    return maps, trials, reused
 
 
 def areas(maps: dict) -> dict:
@@ -251,20 +255,22 @@ def plot(maps: dict, out_dir: pathlib.Path) -> list[pathlib.Path]:
     import matplotlib.pyplot as plt
     from matplotlib.patches import Rectangle
 
-    rows = sorted({(c.object, c.method, c.grasp) for c in maps})
-    planes = [p for p in PLANES if any(c.plane == p for c in maps)]
-    if not rows:
+    objects = list(dict.fromkeys(c.object for c in maps))
+    order = {m: i for i, m in enumerate(METHODS)}
+    panels = {o: sorted((c for c in maps if c.object == o), key=lambda c: (order[c.method], c.grasp, c.plane))
+              for o in objects}
+    if not objects:
         return []
-    fig, axes = plt.subplots(len(rows), len(planes), figsize=(max(4.5, 2.8 * len(planes)), 2.4 * len(rows)),
+    columns = max(len(p) for p in panels.values())
+    fig, axes = plt.subplots(len(objects), columns, figsize=(max(4.5, 2.8 * columns), 2.4 * len(objects) + 0.6),
                              squeeze=False)
-    for i, (obj, method, grasp) in enumerate(rows):
-        for j, plane in enumerate(planes):
+    for i, obj in enumerate(objects):
+        for j in range(columns):
             ax = axes[i][j]
-            cell = Cell(obj, method, grasp, plane)
-            if cell not in maps:
+            if j >= len(panels[obj]):
                 ax.set_axis_off()
-                ax.set_title(f"{obj}: {plane} n/a", fontsize=7)
                 continue
+            cell = panels[obj][j]
             tree, results = maps[cell]
             x_axis, y_axis = tree.x, tree.y
             dx = (x_axis.hi - x_axis.lo) / tree.resolution
@@ -284,11 +290,11 @@ def plot(maps: dict, out_dir: pathlib.Path) -> list[pathlib.Path]:
             ax.set_xlabel(f"{x_axis.name} error ({x_axis.unit})", fontsize=7)
             ax.set_ylabel(f"{y_axis.name} error ({y_axis.unit})", fontsize=7)
             ax.tick_params(labelsize=6)
-            label = grasp if method == "oracle" else "planner's best"
+            label = cell.grasp if cell.method == "oracle" else "planner's best"
             ax.set_title(f"{pathlib.Path(obj).stem}, {label}", fontsize=7)
     fig.suptitle("Capture regions in full dynamics\n(cell colour: share of its corners that held, green = all; "
                  "dots: trials, filled = held)", fontsize=8)
-    fig.tight_layout()
+    fig.tight_layout(rect=(0, 0, 1, 1 - 0.5 / (2.4 * len(objects) + 0.6)))
     paths = save_figure(fig, out_dir, "capture", dpi=110)
     plt.close(fig)
     return paths
@@ -325,14 +331,15 @@ def epsilon_against_physics(trials: list[Trial], out_dir: pathlib.Path, progress
 
 
 def write_summary(maps: dict, out_dir: pathlib.Path, config: CaptureConfig, wall_time: float, where: str,
-                  epsilon_lines: list[str] = ()) -> pathlib.Path:
+                  epsilon_lines: list[str] = (), reused: int = 0) -> pathlib.Path:
     """summary.md (the table, how it was sampled, ε against physics) and summary.json (areas, for the
     results page)."""
     from drake_grasp.experiments.results import write_atomically
 
     trials = sum(len(results) for _, results in maps.values())
     lines = ["# Capture regions in full dynamics", "",
-             f"{len(maps)} maps, {trials} trials in {wall_time:.0f} s wall (executor: {where}); seed {config.seed}; "
+             f"{len(maps)} maps, {trials} trials ({trials - reused} run in {wall_time:.0f} s wall by this run, executor: "
+             f"{where}; {reused} read back from capture.csv); seed {config.seed}; "
              f"quadtree: {config.base} x {config.base} coarse cells, {config.depth} refinement levels (a cell whose "
              "corners disagree is split in four).", "",
              "The compliant grasp is computed from the true pose and size with the error added (method `oracle`); "
@@ -357,10 +364,11 @@ def run(config: CaptureConfig, out_dir: pathlib.Path, executor, progress=sys.std
     start = time.perf_counter()
     out_dir.mkdir(parents=True, exist_ok=True)
     with results_lock(out_dir):
-        maps, trials = run_capture(config, out_dir, executor, progress, scenario_file, scenario_name)
+        maps, trials, reused = run_capture(config, out_dir, executor, progress, scenario_file, scenario_name)
         plot(maps, out_dir)
         epsilon_lines = epsilon_against_physics(trials, out_dir, progress, replays_per_kind) if epsilon else []
-        write_summary(maps, out_dir, config, time.perf_counter() - start, executor.describe(), epsilon_lines)
+        write_summary(maps, out_dir, config, time.perf_counter() - start, executor.describe(), epsilon_lines,
+                      reused)
     return maps, summary_lines(maps) + ([""] + epsilon_lines[:1] if epsilon_lines else [])
 
 
