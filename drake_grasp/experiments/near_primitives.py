@@ -38,7 +38,7 @@ import time
 import numpy as np
 
 from drake_grasp.experiments import near_primitives_report as analysis
-from drake_grasp.experiments.results import ResultsTable
+from drake_grasp.experiments.results import ResultsTable, json_finite
 
 SETS = ("near", "perfect", "catalogue")
 PERFECT_PRIMITIVES = {"sphere:0.09": "sphere", "cube:0.08": "box", "cylinder:0.065x0.18": "cylinder"}
@@ -175,28 +175,12 @@ def ensure_objects(directory: pathlib.Path, count: int, seed: int, perfect: bool
     generator's perfect meshes), in `directory`: generated once, reused on a rerun (the generator is
     deterministic). Files go through a private folder and are moved into place, the manifest last.
     Returns manifest rows, "file" as a path."""
-    import shutil
-    import tempfile
-
-    from drake_grasp.experiments.results import write_atomically
+    from drake_grasp.experiments.results import ensure_generated
     from drake_grasp.geometry import near_primitives as generator
 
-    directory.mkdir(parents=True, exist_ok=True)
-    manifest = directory / "manifest.json"
-    rows = json.loads(manifest.read_text()) if manifest.is_file() else None
     expected = count + (len(generator.PERFECT) if perfect else 0)
-    fresh = (rows is not None and len(rows) == expected and all(r["seed"] in (seed, -1) for r in rows)
-             and all((directory / r["file"]).is_file() for r in rows))
-    if not fresh:
-        staging = pathlib.Path(tempfile.mkdtemp(dir=directory, prefix=".generating."))
-        try:
-            rows = generator.generate(count, seed, staging, perfect=perfect)
-            for name in [r["file"] for r in rows] + ["manifest.csv"]:
-                (staging / name).replace(directory / name)
-            write_atomically(manifest, (staging / "manifest.json").read_text())
-        finally:
-            shutil.rmtree(staging, ignore_errors=True)
-    return [{**row, "file": str(directory / row["file"])} for row in rows]
+    return ensure_generated(directory, lambda staging: generator.generate(count, seed, staging, perfect=perfect),
+                            expected, (seed, -1))  # the perfect meshes' seed is -1
 
 
 def near_tasks(objects: list[dict], scenario_file: str = "", scenario_name: str = "default") -> list[Task]:
@@ -267,18 +251,8 @@ def run(tasks: list[Task], csv_path: pathlib.Path, executor=None, progress=sys.s
 def _csv_ready(record: dict) -> dict:
     row = dict(record)
     for key in ("statistics", "evidence", "errors"):
-        row[key] = json.dumps(_finite(row[key]))
+        row[key] = json.dumps(json_finite(row[key]))
     return row
-
-
-def _finite(value):
-    if isinstance(value, float):
-        return value if math.isfinite(value) else None
-    if isinstance(value, dict):
-        return {k: _finite(v) for k, v in value.items()}
-    if isinstance(value, (list, tuple)):
-        return [_finite(v) for v in value]
-    return value
 
 
 def _verdict(record: dict) -> str:

@@ -217,27 +217,10 @@ def ensure_objects(directory: pathlib.Path, count: int, seed: int) -> list[dict]
     and moved into place one by one, the manifest last: an interrupted generation leaves no torn file
     and no manifest that promises a missing one.
     """
-    import shutil
-    import tempfile
-
-    from drake_grasp.experiments.results import write_atomically
+    from drake_grasp.experiments.results import ensure_generated
     from drake_grasp.geometry.novel import generate
 
-    directory.mkdir(parents=True, exist_ok=True)
-    manifest = directory / "manifest.json"
-    rows = json.loads(manifest.read_text()) if manifest.is_file() else None
-    fresh = (rows is not None and len(rows) == count and all(r["seed"] == seed for r in rows)
-             and all((directory / r["file"]).is_file() for r in rows))
-    if not fresh:
-        staging = pathlib.Path(tempfile.mkdtemp(dir=directory, prefix=".generating."))
-        try:
-            rows = generate(count, seed, staging)
-            for name in [r["file"] for r in rows] + ["manifest.csv"]:
-                (staging / name).replace(directory / name)
-            write_atomically(manifest, (staging / "manifest.json").read_text())
-        finally:
-            shutil.rmtree(staging, ignore_errors=True)
-    return [{**row, "file": str(directory / row["file"])} for row in rows]
+    return ensure_generated(directory, lambda staging: generate(count, seed, staging), count, (seed,))
 
 
 def run_study(config: NovelConfig, out_dir: pathlib.Path, objects: list[dict], executor, scenario_file: str = "",

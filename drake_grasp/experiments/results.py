@@ -330,3 +330,41 @@ def _format(value) -> str:
 def _normalise(value) -> str:
     """Keys and values compare as the text written to the file: 0.1 and '0.1' are the same key."""
     return _format(value)
+
+
+def json_finite(value):
+    """`value` with NaN and inf floats as None (at any depth of dicts, lists and tuples), so that
+    the JSON cells of a results file are standard JSON."""
+    if isinstance(value, float):
+        return value if math.isfinite(value) else None
+    if isinstance(value, dict):
+        return {k: json_finite(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [json_finite(v) for v in value]
+    return value
+
+
+def ensure_generated(directory: pathlib.Path, generate, expected: int, seeds: tuple) -> list[dict]:
+    """Generated object files in `directory` with their manifest: reused when the manifest lists
+    `expected` rows, each of a seed in `seeds`, whose files all exist; else `generate(staging)`
+    (a deterministic generator writing its files, manifest.csv and manifest.json into `staging`,
+    returning the manifest rows) runs in a private folder and the files are moved into place one by
+    one, the manifest last: an interrupted generation leaves no torn file and no manifest that
+    promises a missing one. Returns the manifest rows, "file" as a path in `directory`."""
+    import shutil
+
+    directory.mkdir(parents=True, exist_ok=True)
+    manifest = directory / "manifest.json"
+    rows = json.loads(manifest.read_text()) if manifest.is_file() else None
+    fresh = (rows is not None and len(rows) == expected and all(r["seed"] in seeds for r in rows)
+             and all((directory / r["file"]).is_file() for r in rows))
+    if not fresh:
+        staging = pathlib.Path(tempfile.mkdtemp(dir=directory, prefix=".generating."))
+        try:
+            rows = generate(staging)
+            for name in [r["file"] for r in rows] + ["manifest.csv"]:
+                (staging / name).replace(directory / name)
+            write_atomically(manifest, (staging / "manifest.json").read_text())
+        finally:
+            shutil.rmtree(staging, ignore_errors=True)
+    return [{**row, "file": str(directory / row["file"])} for row in rows]

@@ -11,13 +11,12 @@ other inputs (scenario, object file, ...: `fingerprint.trial_fingerprint`) compu
 import contextlib
 import dataclasses
 import json
-import math
 import pathlib
 import sys
 import time
 
 from drake_grasp.experiments.executors import Executor, LocalExecutor
-from drake_grasp.experiments.results import ResultsTable
+from drake_grasp.experiments.results import ResultsTable, json_finite
 from drake_grasp.trial.spec import TrialSpec  # re-exported: `runner.TrialSpec` keeps working
 
 __all__ = ["TRIAL_FIELDS", "TRIAL_KEY", "TRIAL_TYPES", "TrialSpec", "fingerprints", "run_one", "run_trials",
@@ -98,20 +97,9 @@ def _row(spec: TrialSpec, record, extra: dict) -> dict:
     row["object"] = spec.object  # the name the sweep asked for (a path stays a path)
     row["grasp"] = spec.grasp  # the key asked for ("" for the algorithm's own choice: see extra.chosen)
     for key in ("finger_angles", "breakaway", "breakaway_angles", "variation"):
-        row[key] = json.dumps(_finite(row[key]))
-    row["extra"] = json.dumps(_finite(extra))
+        row[key] = json.dumps(json_finite(row[key]))
+    row["extra"] = json.dumps(json_finite(extra))
     return row
-
-
-def _finite(value):
-    """NaN and inf as None, so that the JSON cells are standard JSON."""
-    if isinstance(value, float):
-        return value if math.isfinite(value) else None
-    if isinstance(value, dict):
-        return {k: _finite(v) for k, v in value.items()}
-    if isinstance(value, (list, tuple)):
-        return [_finite(v) for v in value]
-    return value
 
 
 def run_trials(specs: list[TrialSpec], csv_path: pathlib.Path, workers: int | None = None,
