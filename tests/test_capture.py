@@ -28,6 +28,20 @@ def test_cells_pick_the_resembled_grasp_and_skip_size_for_the_planner():
     assert all(not (c.method == "eigengrasp" and c.plane == "size") for c in cells)
 
 
+def test_each_physical_trial_counts_once_in_the_epsilon_calibration():
+    def trial(grasp, fingerprint, error, outcome="[1.0, 1.2]"):
+        cell = capture.Cell("sponge", "oracle", grasp, "position")
+        return capture.Trial(cell, (0, 0), None, fingerprint, True, ("sponge", 0, error, outcome, "0.1", "0.001"))
+
+    shared = trial("box", "f1", "e0")
+    same_in_another_plane = trial("box", "f1", "e0")
+    twin_grasp = trial("cylindrical", "f1", "e0")  # the same hand pose planned under another grasp name
+    other_grasp = trial("spherical", "f1", "e0", "[0.9, 1.1]")  # same fingerprint, another record
+    miss_a, miss_b = trial("box", "f3", "e1", "[2.4, 2.4]"), trial("box", "f4", "e2", "[2.4, 2.4]")
+    distinct = capture.distinct_trials([shared, same_in_another_plane, twin_grasp, other_grasp, miss_a, miss_b])
+    assert distinct == [shared, other_grasp, miss_a, miss_b]  # two misses at different errors stay two
+
+
 @pytest.mark.parametrize("bad", [dict(grasps=("fist",)), dict(planes=("roll",)), dict(methods=("magic",)),
                                  dict(base=0), dict(depth=9)])
 def test_bad_configurations_are_refused(bad):

@@ -41,8 +41,8 @@ def add_capture(sub) -> None:
     capture.add_argument("--max-offset", type=float, default=4.0, help="position errors span +-this, cm (default 4)")
     capture.add_argument("--max-yaw", type=float, default=30.0, help="yaw errors span +-this, deg (default 30)")
     capture.add_argument("--max-size", type=float, default=30.0, help="size errors span +-this, %% (default 30)")
-    capture.add_argument("--base", type=int, help="coarse grid cells per side (default 4; quick 2)")
-    capture.add_argument("--depth", type=int, help="refinement levels (default 2; quick 1)")
+    capture.add_argument("--base", type=int, help="coarse grid cells per side (default 2)")
+    capture.add_argument("--depth", type=int, help="refinement levels (default 1)")
     capture.add_argument("--steps", type=int, default=70_000, help="planner steps (default 70000)")
     capture.add_argument("--energy", choices=["contact", "contact-quality"], default="contact-quality",
                          help="the planner's energy (default contact-quality)")
