@@ -334,14 +334,14 @@ class HandController(LeafSystem):
         context.SetDiscreteState(self._status_index, status)
 
     def _Update(self, context: Context, discrete_state: DiscreteValues) -> None:
-        command = self._command_port.Eval(context)
-        action = HandAction(int(round(command[1])))
+        spread_target, action_value = self._command_port.Eval(context).tolist()
+        action = HandAction(int(round(action_value)))
         q, v = self._index.positions_and_velocities(self._state_port.Eval(context))
         proximal_torque = self._index.proximal_actuation(self._actuation_port.Eval(context))
         preshape = self._preshape_port.Eval(context).tolist() if action == HandAction.PRESHAPE else None
         drive = advance_drive(
             context.get_discrete_state(self._drive_index).value().tolist(),
-            spread_target=float(command[0]),
+            spread_target=spread_target,
             action=action,
             spread_measured=(q[0] + q[1]) / 2.0,  # their mean (numpy's np.mean, to the bit)
             proximal_measured=q[2:5],
