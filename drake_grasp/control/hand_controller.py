@@ -17,7 +17,9 @@ torque while a free one follows the motor at full speed. Breakaway is detected f
 joint (its ``net_actuation`` output) exceeding ``breakaway_torque``, as on the real clutch — not from a
 stall detector.
 
-The clutch logic is the pure function `advance_fingers`; `HandController` is the thin LeafSystem around it.
+The clutch logic is the pure function `advance_drive` (on the drive's flat vector of floats, as the
+controller stores it; `advance_fingers` is the same on a `FingerDrive`); `HandController` is the thin
+LeafSystem around it.
 """
 
 
@@ -178,8 +180,8 @@ def advance_drive(
     """`advance_fingers` on FingerDrive's flat vector form, with plain floats: the same arithmetic
     in the same order (the same numbers to the bit), without building arrays of three numbers.
 
-    It runs at every plant step (200 Hz), so it is written for speed: a FingerDrive and numpy's
-    small-array calls cost about ten times as much here (docs/performance.md).
+    It runs at every plant step (200 Hz), so it is written for speed: with a FingerDrive and numpy's
+    small-array calls one update took about 180 us, on floats about 30 us (docs/performance.md).
     """
     F = NUM_FINGERS
     w_p = params.proximal_speed
@@ -273,7 +275,6 @@ def advance_fingers(
         params: drive parameters.
         dt: time since the previous update, s.
     """
-
     def floats(a):
         return np.asarray(a, float).tolist()
 
