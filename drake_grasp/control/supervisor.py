@@ -8,6 +8,7 @@ primitives:
     CameraTwistController ──wam.desired_state──────────────────────────────────────────┘    │
     CompliantGraspSupervisor ──wam.desired_state──────────────────────────────────> PortSwitch ──> station
     CompliantGraspSupervisor ──hand.command, hand.finger_preshape─────────────────────────────────> station
+    CompliantGraspSupervisor ──camera_motion_active──> CameraTwistController.active (0 once it grasps)
 
 * **explore**: while the sequencer runs the primitives, the camera motion drives the arm (the switch
   routes it to the station) and the hand is held open.
