@@ -317,6 +317,10 @@ def test_camera_twist_controller_moves_the_camera_as_asked(station):
     moved = X_WC1.translation() - X_WC0.translation()
     assert np.linalg.norm(moved) == pytest.approx(0.05, abs=0.005)
     assert np.all(np.abs(state[7:]) <= controller.params.joint_velocity_limit + 1e-9)
+    # Stopped (`active` 0, as the supervisor sets it once it drives the arm), it holds its state.
+    controller.GetInputPort("active").FixValue(context, [0.0])
+    simulator.AdvanceTo(1.5)
+    np.testing.assert_array_equal(controller.GetOutputPort("wam.desired_state").Eval(context), state)
 
 
 def test_the_sequencer_stops_the_camera_when_the_exploration_is_over():

@@ -42,9 +42,12 @@ def test_an_unreachable_grasp_is_a_failed_trial_not_a_crash(short_scenario):
 
 
 def test_same_seed_same_trial(short_scenario):
-    a, b = (trial.run(TrialSpec("sponge", "oracle", "box", 3), scenario=short_scenario) for _ in range(2))
-    assert a.variation == b.variation
-    assert a.lift == b.lift and a.slip_distance == b.slip_distance and a.success == b.success
+    """A trial is deterministic: every field of its record but the wall time, to the bit (a speed
+    change that alters a number shows here first; scripts/record_check.py compares whole trials)."""
+    a, b = (trial.run(TrialSpec("sponge", "oracle", "box", 3), scenario=short_scenario).to_dict() for _ in range(2))
+    del a["wall_time"], b["wall_time"]
+    assert json.dumps(a, sort_keys=True) == json.dumps(b, sort_keys=True)  # NaN equal to NaN
+    assert math.isfinite(a["slip_distance"])
 
 
 def test_trial_cli_json_and_errors(capsys, tmp_path, monkeypatch, short_scenario_file):

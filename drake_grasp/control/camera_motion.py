@@ -63,6 +63,9 @@ class CameraTwistController(LeafSystem):
 
     Input ports:
         V_C_desired (6): desired twist of the camera frame C: [ω; v] (rad/s, m/s), expressed in C.
+        active (1, optional): 0 stops the integration (the state is held; nothing is computed), e.g.
+            once the grasp supervisor drives the arm itself and this output goes nowhere; unconnected,
+            the controller always runs.
     Output ports:
         wam.desired_state (14): [q; v] of the arm's 7 joints (rad, rad/s).
         status (1): the last DifferentialInverseKinematicsStatus (0 found, 1 none found, 2 stuck).
@@ -101,6 +104,7 @@ class CameraTwistController(LeafSystem):
                                                          p.max_linear_speed * np.ones(3))
         self._ik = ik
         self._V_C_desired_port = self.DeclareVectorInputPort("V_C_desired", 6)
+        self._active_port = self.DeclareVectorInputPort("active", 1)
         self._state = self.DeclareDiscreteState(2 * n)
         self._status = self.DeclareDiscreteState(1)
         self.DeclareStateOutputPort("wam.desired_state", self._state)
@@ -119,6 +123,8 @@ class CameraTwistController(LeafSystem):
         return self._frame.CalcPoseInWorld(self._plant_context) @ self._X_FC
 
     def _Step(self, context: Context, discrete_state) -> None:
+        if self._active_port.HasValue(context) and self._active_port.Eval(context)[0] < 0.5:
+            return  # the discrete state is left as it is
         n = arm.NUM_JOINTS
         x = context.get_discrete_state(self._state).get_value()
         q, v = x[:n].copy(), x[n:].copy()

@@ -62,9 +62,9 @@ class GraspMotion:
         return any(abs(a) > 1e-9 for a in self.plan.finger_preshape)
 
 
-@dataclasses.dataclass
+@dataclasses.dataclass(frozen=True)
 class _Progress:
-    """The executor's abstract state.
+    """The executor's abstract state (immutable: every update that changes it builds a new one).
 
     Attributes:
         phase, phase_start: the current GraspPhase and when it began, s.
@@ -90,10 +90,10 @@ class _Progress:
     decision: object = None
 
     def __deepcopy__(self, memo) -> "_Progress":
-        """A shallow copy. Drake copies abstract state on every update; the members are never
-        mutated in place (each update builds new ones), so sharing them is safe, and deep-copying
-        the trajectory and plan each time cost about a tenth of a trial's wall time."""
-        return dataclasses.replace(self)
+        """Itself. Drake copies the whole state at every plant step (unrestricted updates); an
+        immutable value needs no copy, and deep-copying the trajectory and plan each time cost about
+        a tenth of a trial's wall time (docs/performance.md)."""
+        return self
 
 
 class GraspExecutor(LeafSystem):
@@ -176,14 +176,15 @@ class GraspExecutor(LeafSystem):
     # --- Outputs. ---------------------------------------------------------------------------------
 
     def _CalcDesiredState(self, context: Context, output: BasicVector) -> None:
-        progress = self.progress(context)
-        trajectory = progress.trajectory
-        t = min(max(context.get_time(), trajectory.start_time()), trajectory.end_time())
-        q = trajectory.value(t).ravel()
-        v = trajectory.EvalDerivative(t, 1).ravel()
-        if context.get_time() >= trajectory.end_time():
-            v = np.zeros_like(v)
-        output.SetFromVector(np.concatenate([q, v]))
+        # Read at every plant step: the trajectory's end holds still (no derivative to evaluate).
+        trajectory = self.progress(context).trajectory
+        t, t_end = context.get_time(), trajectory.end_time()
+        if t >= t_end:
+            q, v = trajectory.value(t_end), np.zeros(trajectory.rows())
+        else:
+            t = max(t, trajectory.start_time())
+            q, v = trajectory.value(t), trajectory.EvalDerivative(t, 1)
+        output.SetFromVector(np.concatenate([q.ravel(), v.ravel()]))
 
     def _CalcHandCommand(self, context: Context, output: BasicVector) -> None:
         progress = self.progress(context)
@@ -243,7 +244,7 @@ class GraspExecutor(LeafSystem):
         return body
 
     def _Update(self, context: Context, state: State) -> None:
-        progress: _Progress = dataclasses.replace(self.progress(context))
+        progress = self.progress(context)
         t = context.get_time()
         elapsed = t - progress.phase_start
         times = self._times
@@ -257,10 +258,11 @@ class GraspExecutor(LeafSystem):
         elif progress.phase == GraspPhase.APPROACH:
             done = t >= progress.trajectory.end_time()
             if motion.plan.stop_on_contact and self._hand_contact_force(context) > times.touch_force:
-                progress.stopped_on_contact = True
+                progress = dataclasses.replace(progress, stopped_on_contact=True)
                 done = True
             if done:
-                progress.approach_travel = times.approach_speed * min(elapsed, motion.approach_duration)
+                progress = dataclasses.replace(
+                    progress, approach_travel=times.approach_speed * min(elapsed, motion.approach_duration))
                 progress = self._enter(progress, GraspPhase.CLOSE, t)
         elif progress.phase == GraspPhase.CLOSE and elapsed >= times.close_time:
             progress = self._enter(progress, GraspPhase.LIFT, t)

@@ -17,7 +17,9 @@ torque while a free one follows the motor at full speed. Breakaway is detected f
 joint (its ``net_actuation`` output) exceeding ``breakaway_torque``, as on the real clutch — not from a
 stall detector.
 
-The clutch logic is the pure function `advance_fingers`; `HandController` is the thin LeafSystem around it.
+The clutch logic is the pure function `advance_drive` (on the drive's flat vector of floats, as the
+controller stores it; `advance_fingers` is the same on a `FingerDrive`); `HandController` is the thin
+LeafSystem around it.
 """
 
 
@@ -143,8 +145,105 @@ class FingerDrive:
         )
 
 
-def _toward(value: float | np.ndarray, target, max_step):
-    return value + np.clip(target - value, -max_step, max_step)
+def _clip(x: float, lo: float, hi: float) -> float:
+    """numpy.clip of one float, to the bit (NaN passes through; the lower bound wins a tie)."""
+    if x != x:
+        return x
+    x = x if x > lo else lo
+    return x if x < hi else hi
+
+
+def _maximum(a: float, b: float) -> float:
+    """numpy.maximum of two floats, to the bit (a when equal or NaN)."""
+    return a if (a >= b or a != a) else b
+
+
+# Layout of FingerDrive's vector form: where each field starts.
+_SPREAD, _SPREAD_RATE, _PROXIMAL, _DISTAL, _BROKEN, _ANGLE, _PROXIMAL_RATE, _DISTAL_RATE = (
+    0, 1, 2, 2 + NUM_FINGERS, 2 + 2 * NUM_FINGERS, 2 + 3 * NUM_FINGERS, 2 + 4 * NUM_FINGERS, 2 + 5 * NUM_FINGERS)
+
+
+def advance_drive(
+    x: list[float],
+    spread_target: float,
+    action: HandAction,
+    spread_measured: float,
+    proximal_measured: list[float],
+    distal_measured: list[float],
+    proximal_torque: list[float],
+    proximal_velocity: list[float],
+    distal_velocity: list[float],
+    params: HandControllerParams,
+    dt: float,
+    preshape=None,
+) -> list[float]:
+    """`advance_fingers` on FingerDrive's flat vector form, with plain floats: the same arithmetic
+    in the same order (the same numbers to the bit), without building arrays of three numbers.
+
+    It runs at every plant step (200 Hz), so it is written for speed: with a FingerDrive and numpy's
+    small-array calls one update took about 180 us, on floats about 30 us (docs/performance.md).
+    """
+    F = NUM_FINGERS
+    w_p = params.proximal_speed
+    w_d_coupled = w_p * hand.DISTAL_PER_PROXIMAL
+    w_d_free = w_d_coupled * hand.BREAKAWAY_SPEEDUP
+    ratio = hand.DISTAL_PER_PROXIMAL
+    proximal_lead, distal_lead, spread_lead = params.proximal_lead, params.distal_lead, params.spread_lead
+    lo_s, hi_s = hand.SPREAD_LIMITS
+    spread_target = _clip(float(spread_target), lo_s, hi_s)
+
+    # Spread first: it moves toward the mode's angle, never leading the joint by more than its lead.
+    spread_before = x[_SPREAD]
+    max_step = params.spread_speed * dt
+    spread = spread_before + _clip(spread_target - spread_before, -max_step, max_step)
+    spread = _clip(spread, spread_measured - spread_lead, spread_measured + spread_lead)
+    spread_ready = abs(spread_measured - spread_target) < math.radians(2.0) and spread == spread_target
+
+    # Where each joint will be at the next update if it keeps closing as it does now.
+    proximal_next = [q + _maximum(v, 0.0) * dt for q, v in zip(proximal_measured, proximal_velocity)]
+    distal_next = [q + _maximum(v, 0.0) * dt for q, v in zip(distal_measured, distal_velocity)]
+    proximal_before = x[_PROXIMAL:_PROXIMAL + F]
+    distal_before = x[_DISTAL:_DISTAL + F]
+    proximal, distal = list(proximal_before), list(distal_before)
+    broken = [b > 0.5 for b in x[_BROKEN:_BROKEN + F]]
+    angle = list(x[_ANGLE:_ANGLE + F])
+    if action == HandAction.CLOSE and spread_ready:
+        for f in range(F):
+            if not broken[f] and proximal_torque[f] > params.breakaway_torque:
+                # The clutch slips: the proximal joint holds where it is; the distal keeps closing.
+                broken[f] = True
+                angle[f] = proximal_measured[f]
+                proximal[f] = proximal_measured[f]
+            if broken[f]:
+                distal[f] = min(distal[f] + w_d_free * dt, distal_next[f] + distal_lead)
+            else:
+                # One motor turns both joints: it stalls as soon as either joint is blocked.
+                proximal[f] = min(proximal[f] + w_p * dt, proximal_next[f] + proximal_lead,
+                                  (distal_next[f] + distal_lead) / ratio)
+                distal[f] = proximal[f] * ratio
+    elif action == HandAction.PRESHAPE and spread_ready:
+        lo_p, hi_p = hand.PROXIMAL_LIMITS
+        for f in range(F):
+            target = _clip(float(preshape[f]), lo_p, hi_p)
+            if target >= proximal[f]:
+                proximal[f] = min(proximal[f] + w_p * dt, target, proximal_next[f] + proximal_lead,
+                                  (distal_next[f] + distal_lead) / ratio)
+            else:
+                proximal[f] = max(proximal[f] - w_p * dt, target)
+            distal[f] = proximal[f] * ratio
+        broken, angle = [False] * F, [math.nan] * F
+    elif action == HandAction.OPEN:
+        # Reopen at the closing speeds, distal first back onto the coupled ratio; re-engage the clutch.
+        open_limit = hand.PROXIMAL_LIMITS[0] - proximal_lead
+        for f in range(F):
+            proximal[f] = _maximum(_maximum(proximal[f] - w_p * dt, open_limit), proximal_measured[f] - proximal_lead)
+            distal[f] = _maximum(_maximum(distal[f] - w_d_free * dt, proximal[f] * ratio),
+                                 distal_measured[f] - distal_lead)
+        broken, angle = [False] * F, [math.nan] * F
+    # HOLD, or CLOSE while the spread is still moving: commands stay (a squeezing finger squeezes on).
+    return ([spread, (spread - spread_before) / dt] + proximal + distal + [1.0 if b else 0.0 for b in broken]
+            + angle + [(p - p0) / dt for p, p0 in zip(proximal, proximal_before)]
+            + [(d - d0) / dt for d, d0 in zip(distal, distal_before)])
 
 
 def advance_fingers(
@@ -176,65 +275,13 @@ def advance_fingers(
         params: drive parameters.
         dt: time since the previous update, s.
     """
-    new = FingerDrive.from_vector(drive.to_vector())
-    w_p = params.proximal_speed
-    w_d_coupled = w_p * hand.DISTAL_PER_PROXIMAL
-    w_d_free = w_d_coupled * hand.BREAKAWAY_SPEEDUP
-    lo_s, hi_s = hand.SPREAD_LIMITS
-    spread_target = float(np.clip(spread_target, lo_s, hi_s))
+    def floats(a):
+        return np.asarray(a, float).tolist()
 
-    # Spread first: it moves toward the mode's angle, never leading the joint by more than its lead.
-    spread = _toward(drive.spread, spread_target, params.spread_speed * dt)
-    spread = float(np.clip(spread, spread_measured - params.spread_lead, spread_measured + params.spread_lead))
-    new.spread_rate = (spread - drive.spread) / dt
-    new.spread = spread
-    spread_ready = abs(spread_measured - spread_target) < math.radians(2.0) and spread == spread_target
-
-    # Where each joint will be at the next update if it keeps closing as it does now.
-    proximal_next = proximal_measured + np.maximum(proximal_velocity, 0.0) * dt
-    distal_next = distal_measured + np.maximum(distal_velocity, 0.0) * dt
-    proximal, distal = drive.proximal.copy(), drive.distal.copy()
-    if action == HandAction.CLOSE and spread_ready:
-        for f in range(NUM_FINGERS):
-            if not drive.broken_away[f] and proximal_torque[f] > params.breakaway_torque:
-                # The clutch slips: the proximal joint holds where it is; the distal keeps closing.
-                new.broken_away[f] = True
-                new.breakaway_angle[f] = proximal_measured[f]
-                proximal[f] = proximal_measured[f]
-            if new.broken_away[f]:
-                distal[f] = min(distal[f] + w_d_free * dt, distal_next[f] + params.distal_lead)
-            else:
-                # One motor turns both joints: it stalls as soon as either joint is blocked.
-                proximal[f] = min(
-                    proximal[f] + w_p * dt,
-                    proximal_next[f] + params.proximal_lead,
-                    (distal_next[f] + params.distal_lead) / hand.DISTAL_PER_PROXIMAL,
-                )
-                distal[f] = proximal[f] * hand.DISTAL_PER_PROXIMAL
-    elif action == HandAction.PRESHAPE and spread_ready:
-        target = np.clip(np.asarray(preshape, float), *hand.PROXIMAL_LIMITS)
-        for f in range(NUM_FINGERS):
-            if target[f] >= proximal[f]:
-                proximal[f] = min(proximal[f] + w_p * dt, target[f], proximal_next[f] + params.proximal_lead,
-                                  (distal_next[f] + params.distal_lead) / hand.DISTAL_PER_PROXIMAL)
-            else:
-                proximal[f] = max(proximal[f] - w_p * dt, target[f])
-            distal[f] = proximal[f] * hand.DISTAL_PER_PROXIMAL
-        new.broken_away[:] = False
-        new.breakaway_angle[:] = np.nan
-    elif action == HandAction.OPEN:
-        # Reopen at the closing speeds, distal first back onto the coupled ratio; re-engage the clutch.
-        proximal = np.maximum(proximal - w_p * dt, hand.PROXIMAL_LIMITS[0] - params.proximal_lead)
-        proximal = np.maximum(proximal, proximal_measured - params.proximal_lead)
-        distal = np.maximum(distal - w_d_free * dt, proximal * hand.DISTAL_PER_PROXIMAL)
-        distal = np.maximum(distal, distal_measured - params.distal_lead)
-        new.broken_away[:] = False
-        new.breakaway_angle[:] = np.nan
-    # HOLD, or CLOSE while the spread is still moving: commands stay (a squeezing finger squeezes on).
-    new.proximal_rate = (proximal - drive.proximal) / dt
-    new.distal_rate = (distal - drive.distal) / dt
-    new.proximal, new.distal = proximal, distal
-    return new
+    return FingerDrive.from_vector(advance_drive(
+        floats(drive.to_vector()), spread_target, action, float(spread_measured), floats(proximal_measured),
+        floats(distal_measured), floats(proximal_torque), floats(proximal_velocity), floats(distal_velocity),
+        params, dt, None if preshape is None else floats(preshape)))
 
 
 class HandController(LeafSystem):
@@ -249,6 +296,10 @@ class HandController(LeafSystem):
     Output ports:
         hand_desired_state: [qd; vd] in the hand's actuator order (plant.get_desired_state_input_port).
         finger_status: [broken_away (3, 0 or 1), breakaway_angle (3, rad, nan before breakaway)].
+
+    Both outputs are functions of the drive alone; each update stores them as discrete state beside
+    the drive, so that the ports are Drake's state output ports (read at every plant step without
+    calling back into Python).
     """
 
     def __init__(self, plant: MultibodyPlant, hand_instance: ModelInstanceIndex,
@@ -262,11 +313,14 @@ class HandController(LeafSystem):
         self._preshape_port = self.DeclareVectorInputPort("finger_preshape", NUM_FINGERS)
         self._state_port = self.DeclareVectorInputPort("hand_state", num_q + num_v)
         self._actuation_port = self.DeclareVectorInputPort("hand_net_actuation", plant.num_actuators(hand_instance))
-        self._drive_index = self.DeclareDiscreteState(FingerDrive().to_vector())
+        initial = FingerDrive().to_vector().tolist()
+        desired, status = self._outputs_of(initial)
+        self._drive_index = self.DeclareDiscreteState(initial)
+        self._desired_index = self.DeclareDiscreteState(desired)
+        self._status_index = self.DeclareDiscreteState(status)
         self.DeclarePeriodicDiscreteUpdateEvent(self._params.period, 0.0, self._Update)
-        self.DeclareVectorOutputPort("hand_desired_state", 2 * self._index.num_actuators, self._CalcDesiredState,
-                                     {self.xd_ticket()})
-        self.DeclareVectorOutputPort("finger_status", 2 * NUM_FINGERS, self._CalcFingerStatus, {self.xd_ticket()})
+        self.DeclareStateOutputPort("hand_desired_state", self._desired_index)
+        self.DeclareStateOutputPort("finger_status", self._status_index)
 
     @property
     def params(self) -> HandControllerParams:
@@ -274,47 +328,50 @@ class HandController(LeafSystem):
 
     def SetInitialFingers(self, context: Context, spread: float = 0.0) -> None:
         """Starts the drive at an open hand with the given spread (rad)."""
-        drive = FingerDrive(spread=spread)
-        context.SetDiscreteState(self._drive_index, drive.to_vector())
+        drive = FingerDrive(spread=spread).to_vector().tolist()
+        desired, status = self._outputs_of(drive)
+        context.SetDiscreteState(self._drive_index, drive)
+        context.SetDiscreteState(self._desired_index, desired)
+        context.SetDiscreteState(self._status_index, status)
 
     def _Update(self, context: Context, discrete_state: DiscreteValues) -> None:
-        command = self._command_port.Eval(context)
-        state = self._state_port.Eval(context)
-        actuation = self._actuation_port.Eval(context)
-        q = self._index.joint_positions(state)
-        v = self._index.joint_velocities(state)
-        drive = FingerDrive.from_vector(context.get_discrete_state(self._drive_index).value())
-        action = HandAction(int(round(command[1])))
-        preshape = self._preshape_port.Eval(context) if action == HandAction.PRESHAPE else None
-        new = advance_fingers(
-            drive,
-            spread_target=float(command[0]),
+        spread_target, action_value = self._command_port.Eval(context).tolist()
+        action = HandAction(int(round(action_value)))
+        q, v = self._index.positions_and_velocities(self._state_port.Eval(context))
+        proximal_torque = self._index.proximal_actuation(self._actuation_port.Eval(context))
+        preshape = self._preshape_port.Eval(context).tolist() if action == HandAction.PRESHAPE else None
+        drive = advance_drive(
+            context.get_discrete_state(self._drive_index).value().tolist(),
+            spread_target=spread_target,
             action=action,
-            spread_measured=float(np.mean(q[0:2])),
+            spread_measured=(q[0] + q[1]) / 2.0,  # their mean (numpy's np.mean, to the bit)
             proximal_measured=q[2:5],
             distal_measured=q[5:8],
-            proximal_torque=self._index.actuation(actuation)[2:5],
+            proximal_torque=proximal_torque,
             proximal_velocity=v[2:5],
             distal_velocity=v[5:8],
             params=self._params,
             dt=self._params.period,
             preshape=preshape,
         )
-        discrete_state.set_value(self._drive_index, new.to_vector())
+        desired, status = self._outputs_of(drive)
+        discrete_state.set_value(self._drive_index, drive)
+        discrete_state.set_value(self._desired_index, desired)
+        discrete_state.set_value(self._status_index, status)
 
     def joint_angles(self, hand_state: np.ndarray) -> np.ndarray:
         """The hand's joint angles in HAND_JOINTS.all order (rad), from its instance state [q; v]."""
         return self._index.joint_positions(hand_state)
 
-    def _CalcDesiredState(self, context: Context, output: BasicVector) -> None:
-        drive = FingerDrive.from_vector(context.get_discrete_state(self._drive_index).value())
-        q_d = np.concatenate([[drive.spread, drive.spread], drive.proximal, drive.distal])
-        v_d = np.concatenate([[drive.spread_rate, drive.spread_rate], drive.proximal_rate, drive.distal_rate])
-        output.SetFromVector(self._index.to_actuator_order(q_d, v_d))
-
-    def _CalcFingerStatus(self, context: Context, output: BasicVector) -> None:
-        drive = FingerDrive.from_vector(context.get_discrete_state(self._drive_index).value())
-        output.SetFromVector(np.concatenate([drive.broken_away.astype(float), drive.breakaway_angle]))
+    def _outputs_of(self, drive: list[float]) -> tuple[np.ndarray, list[float]]:
+        """The outputs for a drive vector: the desired state [qd; vd] in actuator order, and the
+        finger status [broken_away (3), breakaway_angle (3)]."""
+        F = NUM_FINGERS
+        spread, spread_rate = drive[_SPREAD], drive[_SPREAD_RATE]
+        joints = ([spread, spread] + drive[_PROXIMAL:_PROXIMAL + F] + drive[_DISTAL:_DISTAL + F]
+                  + [spread_rate, spread_rate] + drive[_PROXIMAL_RATE:_PROXIMAL_RATE + F]
+                  + drive[_DISTAL_RATE:_DISTAL_RATE + F])
+        return self._index.to_actuator_order(joints), drive[_BROKEN:_ANGLE + F]
 
 
 class _HandIndexing:
@@ -333,10 +390,19 @@ class _HandIndexing:
         self._num_q = plant.num_positions(hand_instance)
         self._q_rows = np.array([instance_q_starts.index(j.position_start()) for j in joints])
         self._v_rows = np.array([instance_v_starts.index(j.velocity_start()) for j in joints])
+        self._qv_rows = np.concatenate([self._q_rows, self._num_q + self._v_rows])
         actuators = sorted(plant.GetJointActuatorIndices(hand_instance), key=int)
         actuated_joints = [plant.get_joint_actuator(a).joint().name() for a in actuators]
         self.num_actuators = len(actuators)
         self._actuator_rows = np.array([actuated_joints.index(name) for name in HAND_JOINTS.all])
+        self._proximal_actuator_rows = self._actuator_rows[2:5]
+        # to_actuator_order as one gather: output k takes joints[order[k]]; the last slot is a 0
+        # (an actuator that is not one of HAND_JOINTS.all gets no command).
+        num_joints = len(HAND_JOINTS.all)
+        order = np.full(2 * self.num_actuators, 2 * num_joints)
+        order[self._actuator_rows] = np.arange(num_joints)
+        order[self.num_actuators + self._actuator_rows] = num_joints + np.arange(num_joints)
+        self._desired_order = order
 
     def joint_positions(self, hand_state: np.ndarray) -> np.ndarray:
         return np.asarray(hand_state)[self._q_rows]
@@ -344,15 +410,22 @@ class _HandIndexing:
     def joint_velocities(self, hand_state: np.ndarray) -> np.ndarray:
         return np.asarray(hand_state)[self._num_q + self._v_rows]
 
+    def positions_and_velocities(self, hand_state: np.ndarray) -> tuple[list[float], list[float]]:
+        """The joint angles and velocities in HAND_JOINTS.all order, as lists of floats."""
+        qv = hand_state[self._qv_rows].tolist()
+        n = len(self._q_rows)
+        return qv[:n], qv[n:]
+
     def actuation(self, net_actuation: np.ndarray) -> np.ndarray:
         return np.asarray(net_actuation)[self._actuator_rows]
 
-    def to_actuator_order(self, q_d: np.ndarray, v_d: np.ndarray) -> np.ndarray:
-        out_q = np.zeros(self.num_actuators)
-        out_v = np.zeros(self.num_actuators)
-        out_q[self._actuator_rows] = q_d
-        out_v[self._actuator_rows] = v_d
-        return np.concatenate([out_q, out_v])
+    def proximal_actuation(self, net_actuation: np.ndarray) -> list[float]:
+        """The actuation on the three proximal joints, N*m, as a list of floats."""
+        return net_actuation[self._proximal_actuator_rows].tolist()
+
+    def to_actuator_order(self, joints: list[float]) -> np.ndarray:
+        """[qd; vd] in actuator order from [qd; vd] in HAND_JOINTS.all order (unknown actuators: 0)."""
+        return np.asarray(joints + [0.0])[self._desired_order]
 
 
 def SetHandActuatorGains(plant: MultibodyPlant, hand_instance: ModelInstanceIndex,

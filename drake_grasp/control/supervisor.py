@@ -8,6 +8,7 @@ primitives:
     CameraTwistController ──wam.desired_state──────────────────────────────────────────┘    │
     CompliantGraspSupervisor ──wam.desired_state──────────────────────────────────> PortSwitch ──> station
     CompliantGraspSupervisor ──hand.command, hand.finger_preshape─────────────────────────────────> station
+    CompliantGraspSupervisor ──camera_motion_active──> CameraTwistController.active (0 once it grasps)
 
 * **explore**: while the sequencer runs the primitives, the camera motion drives the arm (the switch
   routes it to the station) and the hand is held open.
@@ -71,6 +72,9 @@ class CompliantGraspSupervisor(GraspExecutor):
         arm_source: the InputPortIndex of the arm switch's port that drives the WAM: the camera
             motion while exploring (and after a sequence that ended without a grasp), the
             supervisor's own `wam.desired_state` from the decision on.
+        camera_motion_active (1): 1 while the camera motion drives the arm, 0 from the decision to
+            grasp on (for the camera motion controller's `active`: its output then goes nowhere,
+            and it never drives the arm again).
     """
 
     def __init__(self, plant, scene_graph, wam, hand_bodies: list, q_start: np.ndarray, times: ExecutionTimes,
@@ -95,6 +99,8 @@ class CompliantGraspSupervisor(GraspExecutor):
             "object_estimate", AbstractValue.Make(ObjectEstimate(status=OBJECT_NOT_FOUND)))
         self.DeclareAbstractOutputPort("arm_source", lambda: AbstractValue.Make(arm_sources[0]), self._CalcArmSource,
                                        {self.abstract_state_ticket(self._progress_index)})
+        self.DeclareVectorOutputPort("camera_motion_active", 1, self._CalcCameraMotionActive,
+                                     {self.abstract_state_ticket(self._progress_index)})
 
     def decision(self, context: Context) -> Decision | None:
         """The decision, once made (None while exploring)."""
@@ -103,6 +109,9 @@ class CompliantGraspSupervisor(GraspExecutor):
     def _CalcArmSource(self, context: Context, output: AbstractValue) -> None:
         grasping = self.progress(context).motion is not None
         output.set_value(self._arm_sources[1] if grasping else self._arm_sources[0])
+
+    def _CalcCameraMotionActive(self, context: Context, output) -> None:
+        output.SetAtIndex(0, 0.0 if self.progress(context).motion is not None else 1.0)
 
     def _Explore(self, context: Context, progress: _Progress) -> _Progress:
         if not phase_value(self._phase_port.Eval(context)[0]).finished:
@@ -152,6 +161,7 @@ def AddCompliantGraspSupervisor(builder: DiagramBuilder, station, primitives, se
     builder.Connect(primitives.camera_motion.GetOutputPort("wam.desired_state"), camera_port)
     builder.Connect(supervisor.GetOutputPort("wam.desired_state"), grasp_port)
     builder.Connect(supervisor.GetOutputPort("arm_source"), switch.get_port_selector_input_port())
+    builder.Connect(supervisor.GetOutputPort("camera_motion_active"), primitives.camera_motion.GetInputPort("active"))
     builder.Connect(switch.get_output_port(), station_system.GetInputPort("wam.desired_state"))
     builder.Connect(sequencer.GetOutputPort("phase"), supervisor.GetInputPort("exploration_phase"))
     builder.Connect(primitives.estimator.GetOutputPort("estimate"), supervisor.GetInputPort("object_estimate"))

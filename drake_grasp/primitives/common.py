@@ -64,9 +64,13 @@ class VisualPrimitive(LeafSystem):
         self.DeclarePeriodicDiscreteUpdateEvent(self.period, 0.0, self._Update)
 
     def _Update(self, context: Context, discrete_state) -> None:
-        sample = CameraSample.from_vector(self._camera_sample_port.Eval(context))
         command = PrimitiveCommand.from_value(self._command_port.Eval(context)[0])
         book = context.get_discrete_state(self._bookkeeping).get_value().copy()
+        if command == PrimitiveCommand.OFF and book[self._BOOK_LAST_COMMAND] == PrimitiveCommand.OFF:
+            # Off, and off before: the update would write what the state holds (no twist, the same
+            # bookkeeping), so leave it. After the exploration every primitive stays here.
+            return
+        sample = CameraSample.from_vector(self._camera_sample_port.Eval(context))
         t = context.get_time()
         if command == PrimitiveCommand.EXPLORE and book[self._BOOK_LAST_COMMAND] != PrimitiveCommand.EXPLORE:
             book[self._BOOK_EXPLORE_START] = t

@@ -16,7 +16,6 @@ import dataclasses
 import math
 
 import numpy as np
-from scipy import ndimage
 from scipy.spatial import ConvexHull, QhullError
 
 from drake_grasp.vision import blob_features, touches_border
@@ -80,14 +79,19 @@ class Silhouette:
 def min_area_rectangle(mask: np.ndarray) -> Rectangle | None:
     """The minimum-area rectangle that contains every True pixel (as a unit square), or None if empty.
 
-    Rotating calipers on the convex hull of the boundary pixels' corners: the best rectangle has a
-    side along a hull edge. The long side is e1; for a square the side nearest +u is e1.
+    Rotating calipers on the convex hull of the pixels' corners: the best rectangle has a side along
+    a hull edge. The long side is e1; for a square the side nearest +u is e1. The hull is that of
+    the leftmost and rightmost pixel of each row (every other pixel of the row lies between them):
+    the same hull as of all the pixels, from a few hundred corners instead of a whole image's worth.
     """
     mask = np.asarray(mask, dtype=bool)
-    if not mask.any():
+    rows = np.flatnonzero(mask.any(axis=1))
+    if not len(rows):
         return None
-    boundary = mask & ~ndimage.binary_erosion(mask)
-    v, u = np.nonzero(boundary)
+    inside = mask[rows]
+    left = inside.argmax(axis=1)
+    right = mask.shape[1] - 1 - inside[:, ::-1].argmax(axis=1)
+    u, v = np.concatenate([left, right]), np.concatenate([rows, rows])
     corners = np.concatenate([np.column_stack([u + du, v + dv]) for du in (-0.5, 0.5) for dv in (-0.5, 0.5)])
     corners = corners.astype(float)
     try:
