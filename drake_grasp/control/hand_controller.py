@@ -30,7 +30,7 @@ import math
 import numpy as np
 from pydrake.multibody.plant import MultibodyPlant
 from pydrake.multibody.tree import ModelInstanceIndex, PdControllerGains
-from pydrake.systems.framework import BasicVector, Context, DiscreteValues, LeafSystem
+from pydrake.systems.framework import Context, DiscreteValues, LeafSystem
 
 from drake_grasp import hand
 from drake_grasp.hand import HAND_JOINTS, HandAction
@@ -101,6 +101,11 @@ class HandControllerParams:
         return self.spread_torque / self.spread_gains[0]
 
 
+# Layout of FingerDrive's vector form: where each field starts.
+_SPREAD, _SPREAD_RATE, _PROXIMAL, _DISTAL, _BROKEN, _ANGLE, _PROXIMAL_RATE, _DISTAL_RATE = (
+    0, 1, 2, 2 + NUM_FINGERS, 2 + 2 * NUM_FINGERS, 2 + 3 * NUM_FINGERS, 2 + 4 * NUM_FINGERS, 2 + 5 * NUM_FINGERS)
+
+
 @dataclasses.dataclass
 class FingerDrive:
     """State of the three finger drives and the spread drive (all angles in rad).
@@ -124,8 +129,8 @@ class FingerDrive:
     proximal_rate: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(NUM_FINGERS))
     distal_rate: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(NUM_FINGERS))
 
-    # Layout of the flat vector form (the LeafSystem's discrete state).
-    SIZE = 2 + 6 * NUM_FINGERS
+    # Size of the flat vector form (the LeafSystem's discrete state; layout: the _SPREAD... offsets).
+    SIZE = _DISTAL_RATE + NUM_FINGERS
 
     def to_vector(self) -> np.ndarray:
         return np.concatenate([
@@ -138,10 +143,11 @@ class FingerDrive:
         x = np.asarray(x, dtype=float)
         f = NUM_FINGERS
         return cls(
-            spread=float(x[0]), spread_rate=float(x[1]), proximal=x[2:2 + f].copy(),
-            distal=x[2 + f:2 + 2 * f].copy(), broken_away=x[2 + 2 * f:2 + 3 * f] > 0.5,
-            breakaway_angle=x[2 + 3 * f:2 + 4 * f].copy(), proximal_rate=x[2 + 4 * f:2 + 5 * f].copy(),
-            distal_rate=x[2 + 5 * f:2 + 6 * f].copy(),
+            spread=float(x[_SPREAD]), spread_rate=float(x[_SPREAD_RATE]),
+            proximal=x[_PROXIMAL:_PROXIMAL + f].copy(), distal=x[_DISTAL:_DISTAL + f].copy(),
+            broken_away=x[_BROKEN:_BROKEN + f] > 0.5, breakaway_angle=x[_ANGLE:_ANGLE + f].copy(),
+            proximal_rate=x[_PROXIMAL_RATE:_PROXIMAL_RATE + f].copy(),
+            distal_rate=x[_DISTAL_RATE:_DISTAL_RATE + f].copy(),
         )
 
 
@@ -156,11 +162,6 @@ def _clip(x: float, lo: float, hi: float) -> float:
 def _maximum(a: float, b: float) -> float:
     """numpy.maximum of two floats, to the bit (a when equal or NaN)."""
     return a if (a >= b or a != a) else b
-
-
-# Layout of FingerDrive's vector form: where each field starts.
-_SPREAD, _SPREAD_RATE, _PROXIMAL, _DISTAL, _BROKEN, _ANGLE, _PROXIMAL_RATE, _DISTAL_RATE = (
-    0, 1, 2, 2 + NUM_FINGERS, 2 + 2 * NUM_FINGERS, 2 + 3 * NUM_FINGERS, 2 + 4 * NUM_FINGERS, 2 + 5 * NUM_FINGERS)
 
 
 def advance_drive(
@@ -407,17 +408,11 @@ class _HandIndexing:
     def joint_positions(self, hand_state: np.ndarray) -> np.ndarray:
         return np.asarray(hand_state)[self._q_rows]
 
-    def joint_velocities(self, hand_state: np.ndarray) -> np.ndarray:
-        return np.asarray(hand_state)[self._num_q + self._v_rows]
-
     def positions_and_velocities(self, hand_state: np.ndarray) -> tuple[list[float], list[float]]:
         """The joint angles and velocities in HAND_JOINTS.all order, as lists of floats."""
         qv = hand_state[self._qv_rows].tolist()
         n = len(self._q_rows)
         return qv[:n], qv[n:]
-
-    def actuation(self, net_actuation: np.ndarray) -> np.ndarray:
-        return np.asarray(net_actuation)[self._actuator_rows]
 
     def proximal_actuation(self, net_actuation: np.ndarray) -> list[float]:
         """The actuation on the three proximal joints, N*m, as a list of floats."""

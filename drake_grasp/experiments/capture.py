@@ -182,7 +182,7 @@ def run_capture(config: CaptureConfig, out_dir: pathlib.Path, executor, progress
     ({Cell: (Quadtree, {point: success})}, every trial, how many of them were read back from disk)."""
     from drake_grasp.experiments import fig7
     from drake_grasp.experiments.results import check_results_file
-    from drake_grasp.experiments.runner import TRIAL_FIELDS, TRIAL_KEY, fingerprints, run_trials, spec_key, trial_table
+    from drake_grasp.experiments.runner import TRIAL_FIELDS, fingerprints, run_trials, spec_key, trial_table
 
     csv = out_dir / "capture.csv"  # the caller (`run`) holds the folder's lock
     check_results_file(csv, TRIAL_FIELDS)
@@ -216,16 +216,17 @@ def run_capture(config: CaptureConfig, out_dir: pathlib.Path, executor, progress
             break
         specs = [s for _, _, s in todo]
         prints = fingerprints(specs)
-        on_disk = {tuple(str(r[k]) for k in TRIAL_KEY) for r in trial_table(csv, read_only=True).rows()} \
-            if csv.is_file() else set()
-        reused += sum(tuple(str(v) for v in spec_key(s, f)) in on_disk for s, f in zip(specs, prints))
+        if csv.is_file():
+            on_disk = trial_table(csv, read_only=True)
+            reused += sum(spec_key(s, f) in on_disk for s, f in zip(specs, prints))
         rows = run_trials(specs, csv, label=f"capture round {round_number}", executor=executor, progress=progress)
         by_key = {(r["fingerprint"], r["object"], r["method"], r["grasp"]): r for r in rows}
         for (cell, point, spec), fingerprint in zip(todo, prints):
             row = by_key[(fingerprint, spec.object, spec.method, spec.grasp)]
             held = str(row["success"]) in ("1", "True")  # as read back from the CSV
             maps[cell][1][point] = held
-            outcome = (spec.object, spec.seed, row["variation"], row["finger_angles"], row["lift"], row["slip_distance"])
+            outcome = (spec.object, spec.seed, row["variation"], row["finger_angles"], row["lift"],
+                       row["slip_distance"])
             trials.append(Trial(cell, point, spec, fingerprint, held, tuple(str(v) for v in outcome)))
     return maps, trials, reused
 
@@ -310,9 +311,9 @@ def distinct_trials(trials: list[Trial]) -> list[Trial]:
     with its long axis level and a top narrower than the knuckles, the cylindrical and box grasps plan
     the same hand pose, so their trials (two records) simulate the same thing to the last bit. Counting
     such twins twice would narrow the intervals of ε's calibration without new evidence: a trial counts
-    once per record (fingerprint, object, method, grasp), and once per simulated outcome (same object, seed and estimate error,
-    identical final joint angles, lift and slip; the error is part of it because trials that miss
-    the object end alike whatever the error)."""
+    once per record (fingerprint, object, method, grasp), and once per simulated outcome (same
+    object, seed and estimate error, identical final joint angles, lift and slip; the error is part
+    of it because trials that miss the object end alike whatever the error)."""
     seen, distinct = set(), []
     for t in trials:
         record = ("record", t.fingerprint, t.cell.object, t.cell.method, t.cell.grasp)  # a record's key
