@@ -95,7 +95,9 @@ def report(name_a: str, name_b: str, a: dict, b: dict, summary: dict) -> str:
         f"The oracle set (nine objects x three compliant grasps x {len({k[2] for k in a})} seed(s), ground-truth "
         f"estimates), "
         f"each trial run in both scenarios with the same seed. Produced by `scripts/time_step_check.py "
-        f"--scenarios {name_a} {name_b}`.", "",
+        f"--scenarios {name_a} {name_b}`. Where an object's cylindrical and box grasps are the same hand pose "
+        f"their trials are the same trial, and their rows repeat; the 95 % intervals count every row as "
+        f"independent, so they are narrower than the data warrant.", "",
         f"| | `{name_a}` | `{name_b}` |", "|---|---:|---:|",
         f"| held | {format_rate(sa['held'], n)} | {format_rate(sb['held'], n)} |",
         f"| held with under 1 mm of slip | {sa['held_under_1mm']}/{n} | {sb['held_under_1mm']}/{n} |",
