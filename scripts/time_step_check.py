@@ -55,10 +55,12 @@ def outcome(row: dict) -> str:
 
 
 def quantiles(values: list[float]) -> dict:
+    """Median, 90th percentile (nearest rank: the smallest value with at least 90 % of the values at
+    or below it) and maximum; nan for no values."""
     if not values:
         return {"median": float("nan"), "p90": float("nan"), "max": float("nan")}
     ordered = sorted(values)
-    return {"median": statistics.median(ordered), "p90": ordered[min(len(ordered) - 1, int(0.9 * len(ordered)))],
+    return {"median": statistics.median(ordered), "p90": ordered[math.ceil(0.9 * len(ordered)) - 1],
             "max": ordered[-1]}
 
 
@@ -127,9 +129,10 @@ def main() -> int:
     parser.add_argument("--workers", type=int)
     parser.add_argument("--out", default="out/time_step")
     args = parser.parse_args()
-    if args.seeds < 1:
-        print("time_step_check: --seeds must be at least 1", file=sys.stderr)
-        return 2
+    for flag, value in (("--seeds", args.seeds), ("--workers", args.workers)):
+        if value is not None and value < 1:
+            print(f"time_step_check: {flag} must be at least 1, got {value}", file=sys.stderr)
+            return 2
     from drake_grasp.station import DEFAULT_SCENARIO_FILE, load_scenario
     for name in args.scenarios:
         try:

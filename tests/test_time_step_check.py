@@ -43,3 +43,9 @@ def test_report_marks_the_trials_whose_outcome_differs():
     assert "Held in `step_10ms` only: none." in text
     differing = [line for line in text.splitlines() if "(differs)" in line]
     assert len(differing) == 1 and differing[0].startswith("| banana | box | 0 |")
+
+
+def test_quantiles_use_the_nearest_rank():
+    q = time_step_check.quantiles([float(v) for v in range(1, 11)])  # 1..10
+    assert q == {"median": 5.5, "p90": 9.0, "max": 10.0}
+    assert all(math.isnan(v) for v in time_step_check.quantiles([]).values())
