@@ -28,7 +28,7 @@ from pydrake.multibody.parsing import Parser
 from scipy.spatial import ConvexHull, QhullError
 
 from drake_grasp import piece_budget
-from drake_grasp.geometry import cleaning
+from drake_grasp.geometry import cleaning, repair
 from drake_grasp.catalogue import (
     PAPER_OBJECTS, _PAPER_FACTORIES, cube_object, cylinder_object, paper_object, sphere_object,
 )
@@ -54,8 +54,14 @@ def _model_name(text: str) -> str:
     return name if name[0].isalpha() else "object_" + name
 
 
-def _load_checked_mesh(path: Path, label: str, scale: float) -> trimesh.Trimesh:
-    """Loads a mesh and checks it is a closed, positive-volume solid (fixing inverted winding)."""
+# Formats whose files are Y up (glTF 2.0 specifies +Y up, metres): turned so that their up is z.
+_Y_UP_SUFFIXES = (".gltf", ".glb")
+
+
+def _read_mesh(path: Path, label: str, scale: float) -> trimesh.Trimesh:
+    """The triangles of a mesh file as it stores them (scaled to metres, z up; nothing welded or
+    repaired yet). ObjectError for a file that is missing, unreadable, has no triangles or has
+    vertices that are not finite."""
     if not path.exists():
         raise ObjectError(f"{label}: file not found")
     if not path.is_file():
@@ -66,32 +72,60 @@ def _load_checked_mesh(path: Path, label: str, scale: float) -> trimesh.Trimesh:
         reason = _one_line(error) or type(error).__name__
         raise ObjectError(f"{label}: cannot read mesh ({reason})") from None
     if not isinstance(mesh, trimesh.Trimesh) or len(mesh.faces) == 0:
-        raise ObjectError(f"{label}: file contains no triangles")
+        raise ObjectError(f"{label}: file contains no triangles (a point cloud or an empty mesh): no solid "
+                          "can be recovered")
     bad = int(np.count_nonzero(~np.isfinite(mesh.vertices).all(axis=1)))
     if bad:
         noun = "vertex is" if bad == 1 else "vertices are"
         raise ObjectError(f"{label}: {bad} {noun} not finite (NaN or inf)")
-    mesh.apply_scale(scale)
-    mesh.merge_vertices()
+    mesh = trimesh.Trimesh(np.asarray(mesh.vertices, float) * scale, np.asarray(mesh.faces, np.int64), process=False)
+    if path.suffix.lower() in _Y_UP_SUFFIXES:
+        mesh.apply_transform(trimesh.transformations.rotation_matrix(math.pi / 2, [1.0, 0.0, 0.0]))
     extents = mesh.extents
     if not np.min(extents) > 1e-9 * max(np.max(extents), 1e-300):
         raise ObjectError(f"{label}: mesh has zero volume (it is flat)")
-    if not mesh.is_watertight:
-        edges = trimesh.grouping.group_rows(mesh.edges_sorted, require_count=1)
-        if len(edges):
-            raise ObjectError(f"{label}: mesh is not watertight ({len(edges)} open edges)")
-        raise ObjectError(f"{label}: mesh is not watertight (edges shared by more than two faces)")
-    if not mesh.is_winding_consistent:
-        raise ObjectError(f"{label}: mesh has inconsistent face winding (normals point in and out)")
-    volume = mesh.volume
-    if abs(volume) <= 1e-9 * float(np.prod(extents)):
-        raise ObjectError(f"{label}: mesh has zero volume")
-    if volume < 0.0:
-        mesh.invert()  # Consistently inverted winding: flip it (the solid itself is well defined).
     return mesh
 
 
-CLEANING_VERSION = 1  # part of the cache key of decompositions: bump when cleaning changes
+def _solid_from_mesh(mesh: trimesh.Trimesh, label: str, join_gap: float | None = None,
+                     keep_largest: bool = False) -> trimesh.Trimesh:
+    """The solid a mesh's triangles describe (metres): repaired into closed shells
+    (:mod:`drake_grasp.geometry.repair`, saying what was repaired with a MeshNote) and its shells
+    joined into one object (:mod:`drake_grasp.geometry.solid`). The mesh returned may hold several
+    closed parts that touch or lie within the join gap: together they are the object."""
+    try:
+        shells, report = repair.closed_shells(mesh, label)
+    except repair.RepairError as error:
+        raise ObjectError(str(error)) from None
+    if report.changed:
+        warnings.warn(f"{label}: {report.describe()}", MeshNote, stacklevel=3)
+    return _user_solid(shells, label, keep_largest, join_gap)
+
+
+def _load_checked_mesh(path: Path, label: str, scale: float, join_gap: float | None = None,
+                       keep_largest: bool = False) -> trimesh.Trimesh:
+    """:func:`_read_mesh`, then :func:`_solid_from_mesh`."""
+    return _solid_from_mesh(_read_mesh(path, label, scale), label, join_gap, keep_largest)
+
+
+# Bump when loading a file gives other pieces or mass properties for the same bytes: it is part of
+# the decompositions' cache key and of a mesh file's fingerprint (records are computed anew).
+IMPORT_VERSION = 2
+CLEANING_VERSION = 2  # part of the cache key of decompositions: bump when cleaning changes
+
+
+def _coacd_pieces(mesh: trimesh.Trimesh, max_pieces: int) -> list[np.ndarray]:
+    """CoACD's convex pieces of a closed mesh (their vertices, m): seed 0, quiet."""
+    import coacd  # Imported here: only non-convex user meshes need it.
+
+    coacd.set_log_level("error")
+    result = coacd.run_coacd(
+        coacd.Mesh(np.asarray(mesh.vertices, float), np.asarray(mesh.faces, np.int32)),
+        threshold=COACD_THRESHOLD,
+        max_convex_hull=max_pieces,
+        seed=0,
+    )
+    return [np.asarray(vertices, float) for vertices, _ in result]
 
 
 def _decompose(mesh: trimesh.Trimesh, key: str, max_pieces: int, label: str = "mesh") -> list[str]:
@@ -103,7 +137,7 @@ def _decompose(mesh: trimesh.Trimesh, key: str, max_pieces: int, label: str = "m
     triangles, none thinner than MIN_THICKNESS), removing at most VOLUME_TOLERANCE of the mesh's
     volume (else ObjectError). Mass properties never come from the pieces: they come from the mesh.
     """
-    key = f"{key}-{piece_budget.CACHE_TAG}-c{CLEANING_VERSION}"
+    key = f"{key}-{piece_budget.CACHE_TAG}-c{CLEANING_VERSION}-i{IMPORT_VERSION}"
     directory = cache_dir() / "decomposed" / key
     manifest = directory / "pieces.json"
     if manifest.exists():
@@ -111,21 +145,26 @@ def _decompose(mesh: trimesh.Trimesh, key: str, max_pieces: int, label: str = "m
         return [str((directory / name).resolve()) for name in names]
     hull = mesh.convex_hull
     if mesh.volume >= (1.0 - CONVEXITY_TOLERANCE) * hull.volume:
-        parts = [(hull.vertices, hull.faces)]
+        parts = [np.asarray(hull.vertices, float)]
     else:
-        import coacd  # Imported here: only non-convex user meshes need it.
-
         warnings.warn(f"{label}: non-convex: decomposing into at most {max_pieces} convex pieces (CoACD, "
                       "seconds to minutes; cached for next time)", MeshNote, stacklevel=3)
-
-        coacd.set_log_level("error")
-        result = coacd.run_coacd(
-            coacd.Mesh(np.asarray(mesh.vertices, float), np.asarray(mesh.faces, np.int32)),
-            threshold=COACD_THRESHOLD,
-            max_convex_hull=max_pieces,
-            seed=0,
-        )
-        parts = [(np.asarray(vertices, float), None) for vertices, _ in result]
+        parts = []
+        bodies = [mesh] if mesh.body_count == 1 and mesh.is_watertight else repair.closed_parts(mesh)
+        for body in bodies:  # the closed parts of one object (cells, hulls): each is decomposed
+            body_hull = body.convex_hull
+            if body.volume >= (1.0 - CONVEXITY_TOLERANCE) * body_hull.volume:
+                parts.append(np.asarray(body_hull.vertices, float))
+            else:
+                parts += _coacd_pieces(body, max_pieces)
+    # Pieces too thin for contact join a neighbour, and several parts' pieces are merged down to
+    # max_pieces (a merged piece is the hull of both: the added volume is bounded and said).
+    parts, added = cleaning.merge_pieces(parts, max_pieces)
+    if added > 0.01 * float(mesh.volume):
+        warnings.warn(f"{label}: convex pieces merged to {len(parts)}: their hulls add "
+                      f"{100 * added / float(mesh.volume):.1f} % to the volume for contact (not to the mass)",
+                      MeshNote, stacklevel=3)
+    parts = [(vertices, None) for vertices in parts]
     budgeted = [piece_budget.budgeted_piece(vertices)[0] for vertices, _ in parts]
     try:
         clean, _ = cleaning.clean_pieces(budgeted, float(mesh.volume))
@@ -193,16 +232,25 @@ def _rests_stably_upright(hull: trimesh.Trimesh, p_Ocm: np.ndarray) -> bool:
     return bool(np.all(equations[:, :2] @ p_Ocm[:2] + equations[:, 2] <= 1e-9))
 
 
-def _user_solid(mesh: trimesh.Trimesh, label: str, keep_largest: bool) -> trimesh.Trimesh:
-    """The solid a checked mesh encloses: its shells united; one component (or the largest)."""
-    from drake_grasp.geometry.solid import enclosed_solid, largest_component
+def _user_solid(shells: list[trimesh.Trimesh], label: str, keep_largest: bool,
+                join_gap: float | None = None) -> trimesh.Trimesh:
+    """The object closed shells make: those within the join gap of each other are one rigid object
+    (their union); parts farther apart are an ObjectError naming their count and smallest gap,
+    unless `keep_largest` keeps the largest (with a MeshNote)."""
+    from drake_grasp.geometry.solid import solid_of_shells
 
-    solid = enclosed_solid(mesh)
-    if solid.components > 1:
+    solid = solid_of_shells(shells, join_gap)
+    if len(solid.components) > 1:
+        count, gap, smallest = len(solid.components), solid.gap * 1000, solid.smallest_gap * 1000
         if not keep_largest:
-            raise ObjectError(f"{label}: {solid.components} separate solids that do not touch (one object must be "
-                              "one piece); keep the largest with --largest-component")
-        return largest_component(solid)
+            raise ObjectError(f"{label}: {count} separate parts farther apart than the join gap ({gap:.3g} mm; the "
+                              f"smallest gap is {smallest:.1f} mm): one object must be one piece; join them with "
+                              "--join-gap or keep the largest with --largest-component")
+        warnings.warn(f"{label}: kept the largest of {count} separate parts (smallest gap {smallest:.1f} mm)",
+                      MeshNote, stacklevel=3)
+    elif len(shells) > 1:
+        warnings.warn(f"{label}: {len(shells)} closed shells within {solid.gap * 1000:.3g} mm of each other "
+                      "form one object (mass and inertia from their union)", MeshNote, stacklevel=3)
     return solid.mesh
 
 
@@ -255,6 +303,7 @@ def object_from_mesh(
     rgba=YELLOW_PAPER_RGBA,
     friction: float | None = None,
     largest_component: bool = False,
+    join_gap: float | None = None,
 ) -> ObjectSpec:
     """An object from a closed triangle mesh in any format trimesh reads (OBJ, STL, PLY, ...).
 
@@ -291,6 +340,8 @@ def object_from_mesh(
         rgba: Visual colour.
         friction: Coulomb friction of this object; None uses the scene's.
         largest_component: Keep the largest of several separate components instead of failing.
+        join_gap: Shells whose surfaces come this close (m) are one object; default
+            :func:`drake_grasp.geometry.solid.join_gap` (2 mm or 2 % of the largest extent).
 
     Raises:
         ObjectError: One line naming the file and the problem.
@@ -304,14 +355,17 @@ def object_from_mesh(
         )
     if not (scale > 0.0 and math.isfinite(scale)):
         raise ObjectError(f"{label}: scale must be positive, got {scale!r}")
-    mesh = _load_checked_mesh(path, label, scale)
+    if join_gap is not None and not (join_gap >= 0.0 and math.isfinite(join_gap)):
+        raise ObjectError(f"{label}: join gap must be a distance >= 0 (m), got {join_gap!r}")
+    mesh = _read_mesh(path, label, scale)
     if len(mesh.faces) > MAX_FACES:  # Said first: what follows takes a while on such a mesh.
         warnings.warn(f"{label}: {len(mesh.faces):,} faces; simplifying to {MAX_FACES:,} for contact and rendering",
                       MeshNote, stacklevel=2)
-    mesh = _user_solid(mesh, label, largest_component)
+    mesh = _solid_from_mesh(mesh, label, join_gap, largest_component)
     _warn_units(mesh, label, scale)
     digest = hashlib.sha256(path.read_bytes()).hexdigest()
-    settings = f"{scale!r}|{max_pieces}|{COACD_THRESHOLD!r}|{CONVEXITY_TOLERANCE!r}|{largest_component}|{MAX_FACES}"
+    settings = (f"{scale!r}|{max_pieces}|{COACD_THRESHOLD!r}|{CONVEXITY_TOLERANCE!r}|{largest_component}|{MAX_FACES}"
+                f"|{join_gap!r}")
     key = hashlib.sha256((digest + settings).encode()).hexdigest()[:20]
     volume = float(mesh.volume)
     centroid = np.asarray(mesh.center_mass, float)

@@ -369,13 +369,10 @@ def test_non_convex_mesh_is_decomposed_once_and_rests(tmp_path, monkeypatch):
 
 
 def test_bad_meshes_give_one_line_errors(tmp_path):
-    open_box = trimesh.creation.box((0.1, 0.1, 0.1))
-    open_box.update_faces(np.arange(2, len(open_box.faces)))  # Remove one face (two triangles).
-    path = tmp_path / "open_box.stl"
-    open_box.export(path)
-    _assert_one_line_error(
-        lambda: objects.object_from_mesh(path), path, "not watertight", "open edges"
-    )
+    sheet = trimesh.Trimesh([[0, 0, 0], [0.1, 0, 0], [0.1, 0.1, 0.01], [0, 0.1, 0]], [[0, 1, 2], [0, 2, 3]])
+    path = tmp_path / "sheet.stl"
+    sheet.export(path)
+    _assert_one_line_error(lambda: objects.object_from_mesh(path), path, "encloses no volume")
 
     flat = trimesh.creation.box((0.1, 0.1, 0.1))
     flat.vertices[:, 2] = 0.0

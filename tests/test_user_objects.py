@@ -35,11 +35,17 @@ def test_separate_components_are_an_error_unless_the_largest_is_kept(tmp_path):
     parts = _two_boxes(0.2)
     parts = trimesh.util.concatenate([parts, trimesh.creation.box((0.02, 0.02, 0.02)).apply_translation([0, 0.2, 0])])
     parts.export(path)
-    with pytest.raises(objects.ObjectError, match=r"apart.stl: 3 separate solids that do not touch"):
+    # The boxes are 14 cm apart, the cube 16 cm from the first box: the smallest gap is named.
+    with pytest.raises(objects.ObjectError,
+                       match=r"apart.stl: 3 separate parts farther apart than the join gap \(5.2 mm; the smallest "
+                             r"gap is 140.0 mm\)"):
         objects.object_from_mesh(path)
     kept = objects.object_from_mesh(path, largest_component=True)
     assert kept.volume == pytest.approx(108e-6, rel=1e-5)
-    assert solid.enclosed_solid(trimesh.creation.box((0.1, 0.1, 0.1))).components == 1
+    assert len(solid.solid_of_shells([trimesh.creation.box((0.1, 0.1, 0.1))]).components) == 1
+    # A join gap wider than the gaps makes them one object (mass from the three solids).
+    joined = objects.object_from_mesh(path, join_gap=0.17)
+    assert joined.volume == pytest.approx(2 * 108e-6 + 8e-6, rel=1e-5)
 
 
 def test_a_box_in_millimetres_warns_and_scale_fixes_it(tmp_path):
@@ -92,4 +98,4 @@ def test_cli_scale_is_for_mesh_files_only(tmp_path, capsys):
     _two_boxes(0.2).export(apart)
     assert cli.main(["plan-eigengrasp", "--object", str(apart)]) == 2
     err = capsys.readouterr().err.strip().splitlines()
-    assert len(err) == 1 and "2 separate solids that do not touch" in err[0]
+    assert len(err) == 1 and "2 separate parts farther apart than the join gap" in err[0]

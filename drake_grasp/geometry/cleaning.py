@@ -183,3 +183,67 @@ def clean_pieces(
             f"of the volume (tolerance {100 * volume_tolerance:g} %): parts thinner than "
             f"{min_thickness * 1000:g} mm?")
     return clean, removed
+
+
+def _hull_volume(points: np.ndarray) -> float:
+    hull = _hull(points)
+    return float(hull.volume) if hull is not None else 0.0
+
+
+def merge_pieces(
+    pieces: list[np.ndarray], max_pieces: int, *, min_thickness: float = MIN_THICKNESS, near: float = 0.002,
+) -> tuple[list[np.ndarray], float]:
+    """Convex pieces (each given by its points, m) merged into fewer: a piece thinner than
+    `min_thickness` into the neighbour whose joint hull adds the least volume (instead of dropping
+    it and the material it stands for), then, while there are more than `max_pieces`, the two
+    neighbours whose joint hull adds the least. Neighbours are pieces whose bounding boxes lie
+    within `near` (m) of each other (any two, if a piece has none).
+
+    A merged piece is the convex hull of both: it lies outside their union by the volume it adds.
+
+    Returns:
+        The pieces' points and the volume (m³) the merges added, a bound of how much the union of
+        the pieces grew.
+    """
+    pieces = [np.asarray(p, float) for p in pieces]
+    volumes = [_hull_volume(p) for p in pieces]
+    added = 0.0
+
+    def neighbours(i: int) -> list[int]:
+        lo, hi = pieces[i].min(axis=0) - near, pieces[i].max(axis=0) + near
+        found = [j for j in range(len(pieces)) if j != i
+                 and np.all(pieces[j].min(axis=0) <= hi) and np.all(pieces[j].max(axis=0) >= lo)]
+        return found or [j for j in range(len(pieces)) if j != i]
+
+    def cost(i: int, j: int) -> float:
+        return _hull_volume(np.vstack([pieces[i], pieces[j]])) - volumes[i] - volumes[j]
+
+    def merge(i: int, j: int) -> None:
+        nonlocal added
+        joint = np.vstack([pieces[i], pieces[j]])
+        hull = _hull(joint)
+        joint = joint[hull.vertices] if hull is not None else joint
+        volume = _hull_volume(joint)
+        added += max(volume - volumes[i] - volumes[j], 0.0)
+        for k in sorted((i, j), reverse=True):
+            del pieces[k], volumes[k]
+        pieces.append(joint)
+        volumes.append(volume)
+
+    def thin(i: int) -> bool:
+        hull = _hull(pieces[i])
+        return hull is None or min_width(hull.points, _outward_faces(hull)) < min_thickness
+
+    while len(pieces) > 1:
+        thin_pieces = [i for i in range(len(pieces)) if thin(i)]
+        if not thin_pieces:
+            break
+        i = thin_pieces[0]
+        merge(i, min(neighbours(i), key=lambda j: cost(i, j)))
+    while len(pieces) > max(max_pieces, 1):
+        best = min(((cost(i, j), i, j) for i in range(len(pieces)) for j in neighbours(i) if j > i),
+                   default=None)
+        if best is None:
+            break
+        merge(best[1], best[2])
+    return pieces, added

@@ -1,0 +1,303 @@
+"""Repairing a triangle mesh into closed shells: what a scan, a visual mesh or a CAD export needs
+before it can be a rigid body.
+
+Why: a real object file is rarely a clean closed 2-manifold. It has open edges and holes, edges
+shared by three or more faces, flipped and duplicated faces, degenerate triangles, internal walls
+between cells that share a face, and stray sheets. Mass, inertia and contact all need closed,
+outward-wound shells. The steps, each counted for the one-line note a user sees:
+
+1. weld vertices that coincide, drop degenerate triangles (repeated or collinear vertices);
+2. drop duplicated faces: of two copies with the same winding one is kept; two copies with opposite
+   windings are the wall between two cells that share that face, and both go (the cells become one
+   shell);
+3. split the rest into patches joined across manifold edges only (an edge of exactly two faces), so
+   that a fin on an edge or two solids meeting along an edge come apart;
+4. wind each patch consistently and outward (trimesh's BFS over face adjacency);
+5. close each open patch: MeshFix (pymeshfix, Attene 2010) fills its holes and removes what is not
+   manifold; a patch that still encloses no volume (a sheet, a fin, an internal partition) is
+   dropped, and when nothing else is left the file is refused.
+
+Why MeshFix: measured on the defect zoo (drake_grasp.geometry.mesh_zoo, scripts/bench_repair.py),
+trimesh.repair.fill_holes closes only holes of one or two triangles, and Manifold refuses any mesh
+that is not already a manifold; MeshFix closed every open cap and hole. See docs/results/repair.md.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+import trimesh
+from scipy.sparse import coo_matrix
+from scipy.sparse.csgraph import connected_components
+
+# A patch encloses a solid only if its volume is at least this fraction of its convex hull's.
+MIN_FILL_FRACTION = 0.02
+# A patch that had to be closed is a solid only if its mean thickness once closed (twice its volume
+# over its area) is at least this fraction of the open patch's largest extent: a curved sheet closed
+# along its boundary is a thin pillow (a 10 cm sheet waving ±2 cm: 6 mm), a tube without caps is not
+# (a 6 × 10 cm tube: 23 mm), nor is a deep bowl; a shallow dish is refused with the sheets.
+MIN_CLOSED_THICKNESS = 0.1
+
+
+class RepairError(ValueError):
+    """No solid can honestly be recovered from the mesh (one line)."""
+
+
+@dataclasses.dataclass
+class RepairReport:
+    """What was done to a mesh, counted (faces, holes) and measured (m³)."""
+
+    welded_vertices: int = 0
+    degenerate_faces: int = 0
+    duplicate_faces: int = 0
+    internal_walls: int = 0  # faces dropped in opposite-wound pairs (walls between cells)
+    non_manifold_edges: int = 0
+    flipped_faces: int = 0
+    open_edges: int = 0
+    closed_patches: int = 0  # patches MeshFix closed
+    dropped_faces: int = 0  # faces of sheets that enclose no volume
+    volume_before: float = float("nan")  # of the repaired patches as given (divergence theorem)
+    volume_after: float = float("nan")
+
+    @property
+    def changed(self) -> bool:
+        return any((self.degenerate_faces, self.duplicate_faces, self.internal_walls, self.non_manifold_edges,
+                    self.flipped_faces, self.open_edges, self.dropped_faces))
+
+    def describe(self) -> str:
+        """One line: what was repaired and how much the volume changed (empty if nothing was)."""
+        parts = []
+        if self.open_edges:
+            parts.append(f"closed {self.closed_patches} open surface{'s' if self.closed_patches != 1 else ''} "
+                         f"({self.open_edges} open edges)")
+        for count, what in ((self.non_manifold_edges, "non-manifold edges split"),
+                            (self.flipped_faces, "faces re-wound"),
+                            (self.duplicate_faces, "duplicate faces dropped"),
+                            (self.internal_walls, "internal wall faces dropped"),
+                            (self.degenerate_faces, "degenerate triangles dropped"),
+                            (self.dropped_faces, "faces of sheets enclosing no volume dropped")):
+            if count:
+                parts.append(f"{count} {what}")
+        if not parts:
+            return ""
+        text = "repaired: " + ", ".join(parts)
+        if self.open_edges and np.isfinite(self.volume_before) and self.volume_before > 0:
+            change = 100.0 * (self.volume_after - self.volume_before) / self.volume_before
+            text += f"; volume of the closed surfaces {change:+.1f} %"
+        return text
+
+
+def _patches(faces: np.ndarray) -> tuple[list[np.ndarray], int]:
+    """Face indices of each patch (faces joined across edges of exactly two faces), and the number
+    of edges of three or more faces."""
+    edges = np.sort(np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]]), axis=1)
+    owner = np.tile(np.arange(len(faces)), 3)
+    _, inverse, counts = np.unique(edges, axis=0, return_inverse=True, return_counts=True)
+    inverse = inverse.ravel()
+    manifold = counts[inverse] == 2
+    order = np.argsort(inverse[manifold], kind="stable")
+    pairs = owner[manifold][order].reshape(-1, 2)
+    n = len(faces)
+    graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(n, n))
+    count, labels = connected_components(graph, directed=False)
+    groups = np.argsort(labels, kind="stable")
+    splits = np.cumsum(np.bincount(labels, minlength=count))[:-1]
+    return np.split(groups, splits), int(np.count_nonzero(counts > 2))
+
+
+def closed_parts(mesh: trimesh.Trimesh) -> list[trimesh.Trimesh]:
+    """The parts of a mesh of closed shells joined across manifold edges only: solids that meet
+    along an edge or at a vertex come apart (each part is what CoACD or a hull takes)."""
+    patches, _ = _patches(np.asarray(mesh.faces))
+    parts = []
+    for indices in patches:
+        part = trimesh.Trimesh(mesh.vertices, mesh.faces[indices], process=False)
+        part.remove_unreferenced_vertices()
+        parts.append(part)
+    return parts
+
+
+def _drop_duplicates(faces: np.ndarray, report: RepairReport) -> np.ndarray:
+    """Faces with duplicates resolved: same winding, one kept; opposite windings, both dropped."""
+    key = np.sort(faces, axis=1)
+    _, inverse, counts = np.unique(key, axis=0, return_inverse=True, return_counts=True)
+    inverse = inverse.ravel()
+    keep = np.ones(len(faces), dtype=bool)
+    for group in np.flatnonzero(counts > 1):
+        members = np.flatnonzero(inverse == group)
+        # Orientation of each copy: an even or odd permutation of the sorted triple.
+        parity = np.array([_parity(faces[m]) for m in members])
+        forward, backward = members[parity], members[~parity]
+        pairs = min(len(forward), len(backward))
+        report.internal_walls += 2 * pairs
+        keep[forward[:pairs]] = keep[backward[:pairs]] = False
+        rest = np.concatenate([forward[pairs:], backward[pairs:]])
+        report.duplicate_faces += max(len(rest) - 1, 0)
+        keep[rest[1:]] = False
+    return faces[keep]
+
+
+def _parity(face: np.ndarray) -> bool:
+    """Whether a face's vertex order is an even rotation of its sorted order."""
+    a, b, c = face
+    return bool((a < b) + (b < c) + (c < a) == 2)
+
+
+def _meshfix(patch: trimesh.Trimesh) -> trimesh.Trimesh | None:
+    import pymeshfix  # Imported here: only open meshes need it.
+
+    fixer = pymeshfix.MeshFix(np.asarray(patch.vertices, float), np.asarray(patch.faces, np.int32))
+    fixer.repair(joincomp=False, remove_smallest_components=False)
+    vertices, faces = np.asarray(fixer.points, float), np.asarray(fixer.faces, np.int64)
+    if len(faces) < 4:
+        return None
+    return trimesh.Trimesh(vertices, faces, process=True)
+
+
+def _consistent_winding(faces: np.ndarray) -> np.ndarray:
+    """The faces re-wound so that every two faces across a manifold edge traverse it in opposite
+    directions (a breadth-first walk over the face adjacency from each patch's first face)."""
+    from scipy.sparse.csgraph import breadth_first_order
+
+    edges = np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]])
+    owner = np.tile(np.arange(len(faces)), 3)
+    _, inverse, counts = np.unique(np.sort(edges, axis=1), axis=0, return_inverse=True, return_counts=True)
+    inverse = inverse.ravel()
+    manifold = counts[inverse] == 2
+    order = np.argsort(inverse[manifold], kind="stable")
+    pairs = owner[manifold][order].reshape(-1, 2)
+    directed = edges[manifold][order].reshape(-1, 2, 2)
+    # Two faces agree when they traverse their shared edge in opposite directions.
+    agree = directed[:, 0, 0] != directed[:, 1, 0]
+    n = len(faces)
+    graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(n, n)).tocsr()
+    disagree_of = {}
+    for (i, j), a in zip(pairs.tolist(), agree.tolist()):
+        disagree_of[(i, j)] = disagree_of[(j, i)] = not a
+    flip = np.zeros(n, dtype=bool)
+    seen = np.zeros(n, dtype=bool)
+    for start in range(n):
+        if seen[start]:
+            continue
+        visit, parent = breadth_first_order(graph, start, directed=False, return_predecessors=True)
+        seen[visit] = True
+        for face in visit[1:].tolist():
+            up = int(parent[face])
+            flip[face] = flip[up] ^ disagree_of[(face, up)]
+    faces = faces.copy()
+    faces[flip] = faces[flip][:, ::-1]
+    return faces
+
+
+def _outward(patch: trimesh.Trimesh, report: RepairReport) -> trimesh.Trimesh:
+    faces = _consistent_winding(patch.faces)
+    flipped = np.any(faces != patch.faces, axis=1)
+    patch = trimesh.Trimesh(patch.vertices, faces, process=False)
+    if patch.is_watertight and patch.volume < 0:
+        patch.invert()
+        flipped = ~flipped
+    # Count the faces whose winding changed against the majority (the file's own convention).
+    report.flipped_faces += int(min(np.count_nonzero(flipped), np.count_nonzero(~flipped)))
+    return patch
+
+
+def _encloses_volume(patch: trimesh.Trimesh, open_extent: float | None = None) -> bool:
+    """Whether a patch is a closed solid; `open_extent` (m), for a patch that had to be closed,
+    is the largest extent of the open patch it came from (see MIN_CLOSED_THICKNESS)."""
+    if not (patch.is_watertight and patch.is_winding_consistent):
+        return False
+    try:
+        hull = patch.convex_hull.volume
+    except Exception:  # qhull: flat
+        return False
+    if not patch.volume > MIN_FILL_FRACTION * hull > 0.0:
+        return False
+    if open_extent is not None:
+        return 2.0 * patch.volume / patch.area >= MIN_CLOSED_THICKNESS * open_extent
+    return True
+
+
+def _file_parts(mesh: trimesh.Trimesh) -> list[np.ndarray]:
+    """Face indices of the file's own parts: faces joined by shared vertex indices (before any
+    welding). A file that stores cells or hulls as separate vertex lists keeps them apart here; a
+    triangle soup (STL) has no such parts, and one list of all faces is returned."""
+    faces = mesh.faces
+    n = len(mesh.vertices)
+    rows = np.repeat(faces[:, 0], 2)
+    cols = faces[:, 1:].ravel()
+    graph = coo_matrix((np.ones(len(rows)), (rows, cols)), shape=(n, n))
+    count, labels = connected_components(graph, directed=False)
+    face_labels = labels[faces[:, 0]]
+    used = np.unique(face_labels)
+    if len(used) == 1 or len(used) > len(faces) / 4:
+        return [np.arange(len(faces))]
+    return [np.flatnonzero(face_labels == label) for label in used]
+
+
+def closed_shells(mesh: trimesh.Trimesh, label: str = "mesh") -> tuple[list[trimesh.Trimesh], RepairReport]:
+    """The closed, outward-wound shells of a mesh (metres), repaired as the module says.
+
+    The file's own parts (vertex lists it keeps apart: cells, hulls) are repaired one by one, so
+    that cells sharing a face are not welded into edges of four faces.
+
+    Raises:
+        RepairError: nothing in the mesh encloses a volume (an open sheet, a flat patch).
+    """
+    report = RepairReport()
+    mesh = trimesh.Trimesh(np.asarray(mesh.vertices, float), np.asarray(mesh.faces, np.int64), process=False)
+    shells = []
+    opened = [0.0, 0.0]
+    for indices in _file_parts(mesh):
+        part = trimesh.Trimesh(mesh.vertices, mesh.faces[indices], process=False)
+        shells += _part_shells(part, report, opened)
+    if report.closed_patches:
+        report.volume_before, report.volume_after = opened
+    if not shells:
+        raise RepairError(f"{label}: an open surface that encloses no volume (a sheet): no solid can be recovered")
+    return shells, report
+
+
+def _part_shells(mesh: trimesh.Trimesh, report: RepairReport, opened: list) -> list[trimesh.Trimesh]:
+    """Closed shells of one part of a file (steps 1-5), counted into `report`; `opened` adds the
+    volumes of the open patches before and after closing them."""
+    vertex_count = len(mesh.vertices)
+    mesh.merge_vertices(merge_tex=True, merge_norm=True)
+    report.welded_vertices += vertex_count - len(mesh.vertices)
+    faces = mesh.faces
+    scale = float(np.max(mesh.extents)) if len(faces) else 1.0
+    repeated = (faces[:, 0] == faces[:, 1]) | (faces[:, 1] == faces[:, 2]) | (faces[:, 2] == faces[:, 0])
+    triangles = mesh.vertices[faces]
+    doubled_area = np.linalg.norm(np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0]), axis=1)
+    degenerate = repeated | (doubled_area <= (1e-9 * scale) ** 2)
+    report.degenerate_faces += int(np.count_nonzero(degenerate))
+    faces = _drop_duplicates(faces[~degenerate], report)
+    if len(faces) == 0:
+        return []
+    patches, non_manifold = _patches(faces)
+    report.non_manifold_edges += non_manifold
+    shells = []
+    for indices in patches:
+        patch = trimesh.Trimesh(mesh.vertices, faces[indices], process=False)
+        patch.remove_unreferenced_vertices()
+        patch = _outward(patch, report)
+        if not patch.is_watertight:
+            open_edges = len(trimesh.grouping.group_rows(patch.edges_sorted, require_count=1))
+            closed = _meshfix(patch) if len(patch.faces) >= 3 else None
+            if closed is not None:
+                closed = _outward(closed, RepairReport())
+            if closed is None or not _encloses_volume(closed, float(np.max(patch.extents))):
+                report.dropped_faces += len(patch.faces)
+                continue
+            report.open_edges += open_edges
+            report.closed_patches += 1
+            centred = patch.copy()
+            centred.apply_translation(-patch.vertices.mean(axis=0))
+            opened[0] += abs(float(centred.volume))
+            opened[1] += float(closed.volume)
+            patch = closed
+        elif not _encloses_volume(patch):
+            report.dropped_faces += len(patch.faces)
+            continue
+        shells.append(patch)
+    return shells
