@@ -358,12 +358,43 @@ def object_from_mesh(
     if join_gap is not None and not (join_gap >= 0.0 and math.isfinite(join_gap)):
         raise ObjectError(f"{label}: join gap must be a distance >= 0 (m), got {join_gap!r}")
     mesh = _read_mesh(path, label, scale)
+    return object_from_triangles(
+        mesh, label, path.stem, hashlib.sha256(path.read_bytes()).hexdigest(), str(path.resolve()), mass=mass,
+        name=name, density=density, scale=scale, max_pieces=max_pieces, stable_pose=stable_pose,
+        closest_primitive=closest_primitive, rgba=rgba, friction=friction, largest_component=largest_component,
+        join_gap=join_gap)
+
+
+def object_from_triangles(
+    mesh: trimesh.Trimesh,
+    label: str,
+    stem: str,
+    digest: str,
+    source: str,
+    *,
+    mass: float | None = None,
+    name: str | None = None,
+    density: float = DEFAULT_DENSITY,
+    scale: float = 1.0,
+    max_pieces: int = DEFAULT_MAX_PIECES,
+    stable_pose: bool | None = None,
+    closest_primitive: str | None = None,
+    rgba=YELLOW_PAPER_RGBA,
+    friction: float | None = None,
+    largest_component: bool = False,
+    join_gap: float | None = None,
+    inertia=None,
+) -> ObjectSpec:
+    """The object a file's triangles describe (metres, in the file's frame), as
+    :func:`object_from_mesh` makes it: `label` names the file in messages, `stem` names the model,
+    `digest` (the content's hash) keys the cached decomposition, `source` is recorded. `inertia`,
+    if given, is a function (volume, centroid, unit inertia, mass) → (mass, centroid, unit inertia)
+    that replaces the mass properties computed from the solid (a model file's checked inertial)."""
     if len(mesh.faces) > MAX_FACES:  # Said first: what follows takes a while on such a mesh.
         warnings.warn(f"{label}: {len(mesh.faces):,} faces; simplifying to {MAX_FACES:,} for contact and rendering",
                       MeshNote, stacklevel=2)
     mesh = _solid_from_mesh(mesh, label, join_gap, largest_component)
     _warn_units(mesh, label, scale)
-    digest = hashlib.sha256(path.read_bytes()).hexdigest()
     settings = (f"{scale!r}|{max_pieces}|{COACD_THRESHOLD!r}|{CONVEXITY_TOLERANCE!r}|{largest_component}|{MAX_FACES}"
                 f"|{join_gap!r}")
     key = hashlib.sha256((digest + settings).encode()).hexdigest()[:20]
@@ -371,7 +402,7 @@ def object_from_mesh(
     centroid = np.asarray(mesh.center_mass, float)
     unit_inertia = np.asarray(mesh.moment_inertia, float) / float(mesh.mass)
     contact_mesh = _simplified(mesh, label)
-    piece_paths = _decompose(contact_mesh, f"{_model_name(path.stem)}-{key}", max_pieces, label)
+    piece_paths = _decompose(contact_mesh, f"{_model_name(stem)}-{key}", max_pieces, label)
     rpy_TO = (0.0, 0.0, 0.0)
     if stable_pose is None and not _rests_stably_upright(contact_mesh.convex_hull, centroid):
         warnings.warn(f"{label}: with its z up the object would tip over (it rests on an edge or a point, "
@@ -381,8 +412,10 @@ def object_from_mesh(
     if stable_pose:
         rpy_TO = tuple(RollPitchYaw(_lowest_resting_rotation(contact_mesh.convex_hull, centroid)).vector())
     pieces = [ShapePiece("convex", (), mesh_path=p) for p in piece_paths]
+    if inertia is not None:
+        mass, centroid, unit_inertia = inertia(volume, centroid, unit_inertia, mass)
     return _make_spec(
-        name or _model_name(path.stem),
+        name or _model_name(stem),
         pieces,
         mass,
         density=density,
@@ -391,127 +424,7 @@ def object_from_mesh(
         closest_primitive=closest_primitive,
         rgba=rgba,
         friction=friction,
-        source=str(path.resolve()),
-    )
-
-
-def _piece_from_drake_shape(
-    shape: Shape, X_BG: RigidTransform, label: str, max_pieces: int
-) -> list[ShapePiece]:
-    """Pieces (posed in the body frame B) for one collision geometry of a parsed SDF."""
-    p = tuple(float(v) for v in X_BG.translation())
-    rpy = tuple(float(v) for v in RollPitchYaw(X_BG.rotation()).vector())
-    if isinstance(shape, Sphere):
-        return [ShapePiece("sphere", (shape.radius(),), p, rpy)]
-    if isinstance(shape, Ellipsoid):
-        return [ShapePiece("ellipsoid", (shape.a(), shape.b(), shape.c()), p, rpy)]
-    if isinstance(shape, Box):
-        return [ShapePiece("box", (shape.width(), shape.depth(), shape.height()), p, rpy)]
-    if isinstance(shape, Cylinder):
-        return [ShapePiece("cylinder", (shape.radius(), shape.length()), p, rpy)]
-    if isinstance(shape, Capsule):
-        return [ShapePiece("capsule", (shape.radius(), shape.length()), p, rpy)]
-    if isinstance(shape, Convex):
-        hull = shape.GetConvexHull()  # Scaled, in G; works for every format Drake reads.
-        vertices = np.array([hull.vertex(i) for i in range(hull.num_vertices())])
-        return [ShapePiece("convex", (), p, rpy, _cached_hull_obj("sdf_convex", vertices))]
-    if isinstance(shape, Mesh):
-        scale = np.asarray(shape.scale3())
-        if not np.allclose(scale, scale[0]):
-            raise ObjectError(f"{label}: non-uniform mesh scale is not supported")
-        mesh = _load_checked_mesh(Path(shape.source().path()), label, float(scale[0]))
-        key = hashlib.sha256(Path(shape.source().path()).read_bytes()).hexdigest()[:20]
-        paths = _decompose(mesh, f"sdf_mesh-{key}-{float(scale[0])!r}-{max_pieces}", max_pieces, label)
-        return [ShapePiece("convex", (), p, rpy, path) for path in paths]
-    raise ObjectError(f"{label}: collision shape {type(shape).__name__} is not supported")
-
-
-def object_from_sdf(
-    path: str | os.PathLike,
-    mass: float | None = None,
-    name: str | None = None,
-    *,
-    density: float = DEFAULT_DENSITY,
-    max_pieces: int = DEFAULT_MAX_PIECES,
-    closest_primitive: str | None = None,
-    rgba=YELLOW_PAPER_RGBA,
-    friction: float | None = None,
-) -> ObjectSpec:
-    """An object from an SDFormat (or URDF) file with one model of one free body.
-
-    The file is parsed by Drake; its body's collision geometries become the pieces (non-convex
-    meshes are decomposed like :func:`object_from_mesh`), its inertial gives mass, centre of mass
-    and inertia (a missing or zero mass falls back to `mass` or density × volume). O is placed at
-    the body's centre of mass with the body frame's axes; the object rests with its z up.
-
-    Limits: one model with one body and no joints (not welded, not articulated); the file's
-    visuals, friction and contact properties are replaced by ours (pieces drawn in `rgba`, the
-    scene's ContactParameters); ``package://`` URIs need the package to be findable by Drake's
-    default PackageMap; half spaces, height maps and other non-solid shapes are rejected.
-
-    Args:
-        path: The model file (.sdf or .urdf).
-        mass: Mass (kg); default the file's, else density × volume.
-        name: Model name; default the file's model name.
-        density: Density (kg/m³) when neither `mass` nor the file gives one.
-        max_pieces: Most convex pieces of a decomposed non-convex mesh.
-        closest_primitive: Ground truth for shape resemblance if known.
-        rgba: Visual colour.
-        friction: Coulomb friction of this object; None uses the scene's.
-
-    Raises:
-        ObjectError: One line naming the file and the problem.
-    """
-    from pydrake.multibody.plant import AddMultibodyPlantSceneGraph
-    from pydrake.systems.framework import DiagramBuilder
-
-    label = os.fspath(path)
-    path = Path(path).expanduser()
-    if not path.is_file():
-        raise ObjectError(f"{label}: file not found")
-    builder = DiagramBuilder()
-    plant, scene_graph = AddMultibodyPlantSceneGraph(builder, 0.0)
-    try:
-        models = Parser(plant).AddModels(str(path.resolve()))
-    except Exception as error:  # Drake raises RuntimeError with multi-line messages.
-        raise ObjectError(f"{label}: cannot parse ({_one_line(error)})") from None
-    if len(models) != 1:
-        raise ObjectError(f"{label}: expected one model, found {len(models)}")
-    (model,) = models
-    bodies = [plant.get_body(index) for index in plant.GetBodyIndices(model)]
-    if len(bodies) != 1:
-        raise ObjectError(f"{label}: expected one body, found {len(bodies)}")
-    if plant.GetJointIndices(model):
-        raise ObjectError(f"{label}: the body must be free (the model has joints or is static)")
-    (body,) = bodies
-    inspector = scene_graph.model_inspector()
-    pieces_B = []
-    for geometry_id in plant.GetCollisionGeometriesForBody(body):
-        shape, X_BG = inspector.GetShape(geometry_id), inspector.GetPoseInFrame(geometry_id)
-        pieces_B += _piece_from_drake_shape(shape, X_BG, label, max_pieces)
-    if not pieces_B:
-        raise ObjectError(f"{label}: the body has no collision geometry")
-    file_mass = body.default_mass()
-    mass_properties = None
-    if file_mass > 0.0 and math.isfinite(file_mass):
-        p_BScm = np.asarray(body.default_com(), float)
-        unit_inertia_Bo = body.default_unit_inertia().CopyToFullMatrix3()
-        shift = np.dot(p_BScm, p_BScm) * np.eye(3) - np.outer(p_BScm, p_BScm)
-        unit_inertia = unit_inertia_Bo - shift  # About the centre of mass.
-        # Overlapping pieces overcount the volume; it is only reported, mass comes from the file.
-        volume = _mass_properties_summed(tuple(pieces_B))[0]
-        mass_properties = (volume, p_BScm, unit_inertia)
-        mass = file_mass if mass is None else mass
-    return _make_spec(
-        name or _model_name(plant.GetModelInstanceName(model)),
-        pieces_B,
-        mass,
-        density=density,
-        mass_properties=mass_properties,
-        closest_primitive=closest_primitive,
-        rgba=rgba,
-        friction=friction,
-        source=str(path.resolve()),
+        source=source,
     )
 
 
@@ -604,10 +517,17 @@ def mesh_options(scale: float = 1.0, largest_component: bool = False) -> dict:
     return options
 
 
+MODEL_SUFFIXES = (".sdf", ".urdf", ".xml", ".mjcf")  # model files (drake_grasp.model_files)
+
+
 def _object_from_file(path: Path, label: str, kw: dict) -> ObjectSpec:
     if not path.exists():
         raise ObjectError(f"{label}: file not found")
-    if path.suffix.lower() in (".sdf", ".urdf"):
-        return object_from_sdf(path, **kw)
+    if path.suffix.lower() in MODEL_SUFFIXES:
+        from drake_grasp import model_files
+
+        if path.suffix.lower() in (".sdf", ".urdf"):
+            return model_files.object_from_sdf(path, **kw)
+        return model_files.object_from_mjcf(path, **kw)
     return object_from_mesh(path, **kw)
 
