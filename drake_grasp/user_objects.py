@@ -483,30 +483,46 @@ def resolve_object(name_or_path: str | os.PathLike, **kw) -> ObjectSpec:
 
 
 def resolve_user_object(
-    name_or_path: str, *, scale: float = 1.0, largest_component: bool = False, **kw
+    name_or_path: str, *, scale: float = 1.0, largest_component: bool = False, join_gap: float | None = None,
+    inertia: str = "check", **kw
 ) -> ObjectSpec:
-    """:func:`resolve_object` with the options that only a mesh file takes (a command line's
-    ``--scale`` and ``--largest-component``): ObjectError if they are given for anything else."""
+    """:func:`resolve_object` with the options that only object files take (a command line's
+    ``--scale``, ``--largest-component``, ``--join-gap``: mesh files, and MJCF for the join gap;
+    ``--inertia``: model files): ObjectError if one is given for an object that does not take it."""
     text = str(name_or_path).strip()
-    if scale == 1.0 and not largest_component:
+    given = mesh_options(scale, largest_component, join_gap, inertia)
+    if not given:
         return resolve_object(text, **kw)
-    options = "--scale" if scale != 1.0 else "--largest-component"
-    if not is_mesh_file(text):
-        raise ObjectError(f"{text}: {options} applies to mesh files only (OBJ, STL, PLY)")
+    taken = options_for(text, **given)
+    for option in given:
+        if option not in taken:
+            flag = "--" + option.replace("_", "-")
+            kinds = ("model files (SDF, URDF, MJCF)" if option == "inertia" else
+                     "mesh files and MJCF models" if option == "join_gap" else "mesh files (OBJ, STL, PLY, glTF)")
+            raise ObjectError(f"{text}: {flag} applies to {kinds} only")
     if not (scale > 0.0 and math.isfinite(scale)):
         raise ObjectError(f"--scale must be positive, got {scale!r}")
-    return resolve_object(text, scale=scale, largest_component=largest_component, **kw)
+    if join_gap is not None and not (join_gap >= 0.0 and math.isfinite(join_gap)):
+        raise ObjectError(f"--join-gap must be a distance >= 0 (m), got {join_gap!r}")
+    return resolve_object(text, **taken, **kw)
 
 
 def is_mesh_file(name_or_path: str) -> bool:
     """Whether an object argument names a mesh file (what `--scale` applies to), not a catalogue
-    object, a primitive or an SDF/URDF model."""
+    object, a primitive or a model file (SDF, URDF, MJCF)."""
     text = str(name_or_path).strip()
-    return not (text in _PAPER_FACTORIES or ":" in text or Path(text).suffix.lower() in (".sdf", ".urdf"))
+    return not (text in _PAPER_FACTORIES or ":" in text or Path(text).suffix.lower() in MODEL_SUFFIXES)
 
 
-def mesh_options(scale: float = 1.0, largest_component: bool = False) -> dict:
-    """The mesh options that differ from their defaults, as keyword arguments of
+def is_model_file(name_or_path: str) -> bool:
+    """Whether an object argument names a model file (SDF, URDF, MJCF: what `--inertia` applies to)."""
+    text = str(name_or_path).strip()
+    return text not in _PAPER_FACTORIES and ":" not in text and Path(text).suffix.lower() in MODEL_SUFFIXES
+
+
+def mesh_options(scale: float = 1.0, largest_component: bool = False, join_gap: float | None = None,
+                 inertia: str = "check") -> dict:
+    """The object-file options that differ from their defaults, as keyword arguments of
     :func:`resolve_user_object` (plain data: a sweep's tasks carry them to its workers, and a
     record's fingerprint includes them)."""
     options = {}
@@ -514,7 +530,21 @@ def mesh_options(scale: float = 1.0, largest_component: bool = False) -> dict:
         options["scale"] = float(scale)
     if largest_component:
         options["largest_component"] = True
+    if join_gap is not None:
+        options["join_gap"] = float(join_gap)
+    if inertia != "check":
+        options["inertia"] = inertia
     return options
+
+
+def options_for(name_or_path: str, **options) -> dict:
+    """Of `options` (:func:`mesh_options`'s keywords), those the object takes: scale and
+    largest_component a mesh file, join_gap a mesh file or an MJCF model, inertia a model file."""
+    text = str(name_or_path).strip()
+    mjcf = is_model_file(text) and Path(text).suffix.lower() in (".xml", ".mjcf")
+    takes = {"scale": is_mesh_file(text), "largest_component": is_mesh_file(text) or mjcf,
+             "join_gap": is_mesh_file(text) or mjcf, "inertia": is_model_file(text)}
+    return {k: v for k, v in options.items() if takes.get(k, False)}
 
 
 MODEL_SUFFIXES = (".sdf", ".urdf", ".xml", ".mjcf")  # model files (drake_grasp.model_files)

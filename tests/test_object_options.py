@@ -35,5 +35,5 @@ def test_a_sweep_carries_the_scale_of_its_mesh_files_into_specs_and_fingerprints
 
 def test_sweeps_reject_a_scale_with_no_mesh_file(tmp_path, capsys):
     assert cli.main(["fig6", "--objects", "sponge,sphere:0.1", "--scale", "0.001", "--out", str(tmp_path / "o")]) == 2
-    assert "applies to mesh files only" in capsys.readouterr().err
+    assert "--scale applies to object files (mesh or model files) that take it, and --objects names none" in capsys.readouterr().err
     assert not (tmp_path / "o").exists()

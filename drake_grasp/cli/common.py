@@ -14,18 +14,30 @@ class UsageError(ValueError):
 
 
 def add_mesh_options(p: argparse.ArgumentParser) -> None:
-    """--scale and --largest-component, for every command that takes --object."""
+    """--scale, --largest-component, --join-gap and --inertia, for every command that takes --object."""
     p.add_argument("--scale", type=float, default=1.0, metavar="S",
                    help="multiply a mesh file's coordinates by S (e.g. 0.001 for a file in millimetres)")
     p.add_argument("--largest-component", action="store_true",
-                   help="a mesh of separate, non-touching solids: keep the largest (else an error)")
+                   help="a mesh of parts farther apart than the join gap: keep the largest (else an error)")
+    p.add_argument("--join-gap", type=float, default=None, metavar="M",
+                   help="closed shells of a mesh this close (m) are one object (default: 2 mm or 2 %% of its "
+                   "largest extent, whichever is larger)")
+    p.add_argument("--inertia", default="check", choices=("check", "file", "geometry"),
+                   help="a model file's inertial: check it and replace an implausible one by the collision "
+                   "geometry's (default), keep the file's (refused if it cannot be simulated), or use the geometry's")
+
+
+def mesh_option_args(args) -> dict:
+    """The object-file options of a command line (keyword arguments of resolve_user_object)."""
+    return {"scale": args.scale, "largest_component": args.largest_component,
+            "join_gap": getattr(args, "join_gap", None), "inertia": getattr(args, "inertia", "check")}
 
 
 def resolve_object_arg(args):
-    """The --object of a single-run command, with its mesh options."""
+    """The --object of a single-run command, with its object-file options."""
     from drake_grasp.objects import resolve_user_object
 
-    return resolve_user_object(args.object, scale=args.scale, largest_component=args.largest_component)
+    return resolve_user_object(args.object, **mesh_option_args(args))
 
 
 def add_common(p: argparse.ArgumentParser, scenario: bool = True, seed: bool = True) -> None:

@@ -136,7 +136,8 @@ def _run_trial(args) -> int:
     replay, scenario, obj = single_run_inputs(args)
     error = _estimate_error_arg(args.estimate_error)
     options = dict(scenario_file=args.scenario or "", scenario_name=args.scenario_name, scale=args.scale,
-                   largest_component=args.largest_component, estimate_error=error)
+                   largest_component=args.largest_component, join_gap=args.join_gap, inertia=args.inertia,
+                   estimate_error=error)
     if args.method == "eigengrasp":
         settings = _planner_settings_args(args, error)
         spec = trial.TrialSpec(args.object, "eigengrasp", settings.label, args.seed, planner=settings, **options)

@@ -73,6 +73,7 @@ def _run_capture(args) -> int:
     if args.max_size >= 100:
         raise UsageError(f"--max-size must be below 100 %, got {args.max_size}")
     args.scale, args.largest_component = 1.0, False  # no mesh options here: objects_arg checks them
+    args.join_gap, args.inertia = None, "check"
     base = capture.CaptureConfig.quick(seed=args.seed) if args.quick else capture.CaptureConfig(objects=PAPER_OBJECTS)
     overrides = {
         "objects": objects_arg(args, base.objects), "seed": args.seed, "steps": args.steps, "energy": args.energy,
@@ -192,6 +193,7 @@ def _sensitivity_config(args):
             raise UsageError(f"--conditions: unknown {', '.join(unknown)} (choose from {', '.join(known)})")
         conditions = tuple(known[n] for n in dict.fromkeys(names))
     args.scale, args.largest_component = 1.0, False  # no mesh options here: objects_arg checks them
+    args.join_gap, args.inertia = None, "check"
     objects = objects_arg(args, sensitivity.QUICK_OBJECTS if args.quick else ())
     scenario_file, scenario_name = scenario_args(args)
     return sensitivity.SensitivityConfig(objects=objects, trials=trials, seed=args.seed, conditions=conditions,

@@ -159,7 +159,7 @@ def objects_arg(args, default: tuple[str, ...]) -> tuple[str, ...]:
     """--objects as a tuple (each resolved once here, with the mesh options, so that a bad one is a
     one-line error before any worker starts), or `default`. `--scale` and `--largest-component`
     apply to the mesh files among them; given with no mesh file at all, they are an error."""
-    from drake_grasp.objects import is_mesh_file, mesh_options, resolve_user_object
+    from drake_grasp.user_objects import mesh_options, options_for, resolve_user_object
 
     objects = tuple(default)
     if args.objects is not None:
@@ -168,13 +168,15 @@ def objects_arg(args, default: tuple[str, ...]) -> tuple[str, ...]:
             raise UsageError("--objects needs at least one object")
         if len(set(objects)) != len(objects):
             raise UsageError(f"--objects names an object twice: {args.objects}")
-    options = mesh_options(args.scale, args.largest_component)
-    if options and not any(is_mesh_file(o) for o in objects):
-        raise UsageError(f"{'--scale' if 'scale' in options else '--largest-component'} applies to mesh files "
-                         "only (OBJ, STL, PLY), and --objects names none")
+    options = mesh_options(args.scale, args.largest_component, getattr(args, "join_gap", None),
+                           getattr(args, "inertia", "check"))
+    for option in options:
+        if not any(option in options_for(o, **options) for o in objects):
+            raise UsageError(f"--{option.replace('_', '-')} applies to object files (mesh or model files) that take "
+                             "it, and --objects names none")
     if args.objects is not None:
         for o in objects:
-            resolve_user_object(o, **(options if is_mesh_file(o) else {}))
+            resolve_user_object(o, **options_for(o, **options))
     return objects
 
 
@@ -215,7 +217,8 @@ def _run_fig6(args) -> int:
     objects = objects_arg(args, fig6.QUICK_OBJECTS if args.quick else PAPER_OBJECTS)
     trials = args.trials or (2 if args.quick else 10)
     config = fig6.Fig6Config(objects=tuple(objects), trials=trials, seed=args.seed, method=args.method,
-                             scale=args.scale, largest_component=args.largest_component)
+                             scale=args.scale, largest_component=args.largest_component, join_gap=args.join_gap,
+                             inertia=args.inertia)
     out = check_out_dir(args.out or args.out_default)
     start = time.perf_counter()
     with executor:
@@ -245,7 +248,8 @@ def _run_fig7(args) -> int:
                              trials=trials,
                              seed=args.seed, steps=args.steps, energy=args.energy,
                              compliant_method=args.compliant_method, scale=args.scale,
-                             largest_component=args.largest_component)
+                             largest_component=args.largest_component, join_gap=args.join_gap,
+                             inertia=args.inertia)
     out = check_out_dir(args.out or args.out_default)
     start = time.perf_counter()
     with executor:

@@ -45,13 +45,15 @@ class Fig6Config:
     method: str = "compliant"
     scale: float = 1.0
     largest_component: bool = False
+    join_gap: float | None = None
+    inertia: str = "check"
 
     def object_options(self, obj: str) -> dict:
         """The keyword arguments that resolve `obj` as this sweep does (`--scale`,
         `--largest-component` for a mesh file; none for a catalogue object or a primitive)."""
-        from drake_grasp.objects import is_mesh_file, mesh_options
+        from drake_grasp.user_objects import mesh_options, options_for
 
-        return mesh_options(self.scale, self.largest_component) if is_mesh_file(obj) else {}
+        return options_for(obj, **mesh_options(self.scale, self.largest_component, self.join_gap, self.inertia))
 
     def __post_init__(self):
         if self.trials < 1:

@@ -55,13 +55,15 @@ class Fig7Config:
     compliant_method: str = "compliant"
     scale: float = 1.0
     largest_component: bool = False
+    join_gap: float | None = None
+    inertia: str = "check"
 
     def object_options(self, obj: str) -> dict:
         """The keyword arguments that resolve `obj` as this comparison does (`--scale`,
         `--largest-component` for a mesh file; none for anything else)."""
-        from drake_grasp.objects import is_mesh_file, mesh_options
+        from drake_grasp.user_objects import mesh_options, options_for
 
-        return mesh_options(self.scale, self.largest_component) if is_mesh_file(obj) else {}
+        return options_for(obj, **mesh_options(self.scale, self.largest_component, self.join_gap, self.inertia))
 
     @property
     def plan_tag(self) -> str:
@@ -306,7 +308,8 @@ def run_comparison(config: Fig7Config, out_dir: pathlib.Path, fig6_dir: pathlib.
                                 label="fig7", executor=executor)
         f6_config = fig6.Fig6Config(objects=config.objects, trials=config.trials, seed=config.seed,
                                     method=config.compliant_method, scale=config.scale,
-                                    largest_component=config.largest_component)
+                                    largest_component=config.largest_component, join_gap=config.join_gap,
+                                    inertia=config.inertia)
         f6_specs = fig6.trial_specs(f6_config, scenario_file, scenario_name)
         f6_prints = fingerprints(f6_specs)
         # Fig. 6's records of the same inputs (same fingerprints) are reused; its file is only read.

@@ -45,7 +45,7 @@ def _canonical(value):
 
 def object_content(name_or_path: str, **object_kwargs) -> dict:
     """What an object argument stands for, as plain data: the argument itself, plus the bytes of its
-    file (as a hash) for a path, the parsed numbers for a primitive, or the catalogue name and the
+    file (as a hash) and the version of the import (repair, joining, decomposition) for a path, the parsed numbers for a primitive, or the catalogue name and the
     package version for a catalogue object. The keyword arguments of the object's construction (a
     mass, a scale) enter too.
 
@@ -53,6 +53,7 @@ def object_content(name_or_path: str, **object_kwargs) -> dict:
         ObjectError: as `objects.resolve_object` for a bad argument.
     """
     from drake_grasp.objects import _PAPER_FACTORIES, _PRIMITIVE_PATTERNS, ObjectError
+    from drake_grasp.user_objects import IMPORT_VERSION
 
     text = str(name_or_path).strip()
     content = {"argument": text, "kwargs": object_kwargs}
@@ -68,7 +69,8 @@ def object_content(name_or_path: str, **object_kwargs) -> dict:
         path = pathlib.Path(text).expanduser()
         try:
             content["file"] = {"name": path.name, "sha256": _file_sha256(path.resolve(), path.stat().st_mtime_ns,
-                                                                          path.stat().st_size)}
+                                                                          path.stat().st_size),
+                               "import": IMPORT_VERSION}
         except OSError as e:
             raise ObjectError(f"{text}: cannot read ({e.strerror})") from None
     return content

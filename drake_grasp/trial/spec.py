@@ -51,7 +51,8 @@ class TrialSpec:
         scenario_file, scenario_name: the station scenario.
         planned: for planned grasps: {"X_OH": 4x4 list, "joint_angles": 8 floats} (and what else the
             planner said of it: epsilon, energy, planner_rank).
-        scale, largest_component: a mesh file's options (`objects.resolve_user_object`).
+        scale, largest_component, join_gap, inertia: an object file's options
+            (`objects.resolve_user_object`).
         estimate_error: a known error added to the estimate the grasp is computed from (issue 15's
             capture regions; `estimate_error.EstimateError`): for "oracle" the ground-truth estimate,
             for "compliant" the camera's; for "eigengrasp" the object pose the planned hand pose is
@@ -69,6 +70,8 @@ class TrialSpec:
     planned: dict | None = None
     scale: float = 1.0
     largest_component: bool = False
+    join_gap: float | None = None
+    inertia: str = "check"
     estimate_error: EstimateError | None = None
     planner: PlannerSettings | None = None
 
@@ -78,10 +81,12 @@ class TrialSpec:
             raise ValueError("a size error does not apply to the Eigengrasp planner (it has the exact model)")
 
     def object_options(self) -> dict:
-        """The mesh options that differ from their defaults (keyword arguments)."""
-        from drake_grasp.objects import mesh_options
+        """The object-file options that differ from their defaults and that the object takes
+        (keyword arguments)."""
+        from drake_grasp.user_objects import mesh_options, options_for
 
-        return mesh_options(self.scale, self.largest_component)
+        return options_for(self.object, **mesh_options(self.scale, self.largest_component, self.join_gap,
+                                                       self.inertia))
 
     @property
     def has_estimate_error(self) -> bool:
