@@ -1,4 +1,4 @@
-"""The `objects` command: object utilities (today: generate novel test objects)."""
+"""The `objects` command: object utilities: generate novel test objects, check an object file."""
 
 import json
 
@@ -7,7 +7,7 @@ from drake_grasp.cli.common import UsageError, check_out_dir, check_seed
 
 def add_objects(sub) -> None:
     """`drake-grasp objects`."""
-    objects_cmd = sub.add_parser("objects", help="object utilities: generate novel test objects")
+    objects_cmd = sub.add_parser("objects", help="object utilities: generate novel test objects, check an object file")
     objects_sub = objects_cmd.add_subparsers(dest="objects_command", metavar="ACTION", required=True)
     generate = objects_sub.add_parser(
         "generate",
@@ -21,6 +21,7 @@ def add_objects(sub) -> None:
     generate.add_argument("--out", required=True, metavar="DIR", help="directory for the meshes and manifest")
     generate.add_argument("--json", action="store_true", help="print the manifest as one JSON object")
     generate.set_defaults(run=_run_objects_generate)
+    add_objects_check(objects_sub)
 
 
 def _run_objects_generate(args) -> int:
@@ -39,3 +40,46 @@ def _run_objects_generate(args) -> int:
     return 0
 
 
+
+
+def add_objects_check(objects_sub) -> None:
+    """`drake-grasp objects check`."""
+    from drake_grasp.cli.common import add_mesh_options
+
+    check = objects_sub.add_parser(
+        "check",
+        help="load an object file as a trial would and say what was found and done",
+        description="Loads FILE exactly as a trial would (mesh: OBJ, STL, PLY, glTF/GLB; model: SDF, URDF, "
+        "MJCF) and prints what it found and did: repairs, shells joined into one object and their gaps, "
+        "units, volume, mass and where the inertia came from, convex pieces, resting pose, load time. "
+        "Exit code 0 for an accepted file, 2 (one line saying why) for a refused one.",
+    )
+    check.add_argument("file", metavar="FILE", help="the object file (or a catalogue name or primitive)")
+    add_mesh_options(check)
+    check.add_argument("--replay", metavar="HTML", help="write a browser view of the convex pieces over the visual mesh")
+    check.add_argument("--json", action="store_true", help="print one JSON object instead of lines")
+    check.set_defaults(run=_run_objects_check)
+
+
+def _run_objects_check(args) -> int:
+    import dataclasses
+
+    from drake_grasp import object_check
+    from drake_grasp.cli.common import jsonable, mesh_option_args, writable_file
+    from drake_grasp.user_objects import is_mesh_file
+
+    replay = writable_file(args.replay, ".html") if args.replay else None
+    spec, report = object_check.check_object(args.file, **mesh_option_args(args))
+    if replay:
+        visual = args.file if is_mesh_file(args.file) and ":" not in args.file else None
+        object_check.write_replay(spec, replay, visual, args.scale)
+    if args.json:
+        record = dataclasses.asdict(report)
+        if replay:
+            record["replay"] = str(replay)
+        print(json.dumps(jsonable(record)))
+    else:
+        print("\n".join(report.lines()))
+        if replay:
+            print(f"replay: {replay}")
+    return 0

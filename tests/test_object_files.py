@@ -1,0 +1,128 @@
+"""Real object files as users bring them: every case of the defect zoo (drake_grasp.geometry.mesh_zoo)
+is accepted (with its note), repaired, or refused for its stated reason; model files' inertias are
+checked; `objects check` says what it did; and a grasp on such objects ends in no simulation error."""
+
+import json
+import warnings
+
+import numpy as np
+import pytest
+import trimesh
+
+from drake_grasp import cli, trial
+from drake_grasp.geometry import mesh_zoo, repair, solid
+from drake_grasp.model_files import InertiaWarning, inertia_problem
+from drake_grasp.objects import ObjectError
+from drake_grasp.trial import SIMULATION_ERROR, TrialSpec
+from drake_grasp.user_objects import resolve_user_object
+
+
+@pytest.fixture(scope="module")
+def zoo(tmp_path_factory):
+    return mesh_zoo.generate(tmp_path_factory.mktemp("zoo"), seeds=(0,))
+
+
+def _load(case):
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        spec = resolve_user_object(str(case.path), **({"scale": case.scale} if case.scale != 1.0 else {}))
+    return spec, [str(w.message) for w in caught]
+
+
+@pytest.mark.parametrize("defect", mesh_zoo.CLASSES)
+def test_every_zoo_case_is_accepted_repaired_or_refused_for_its_reason(zoo, defect):
+    (case,) = [c for c in zoo if c.defect == defect]
+    if case.verdict == "refused":
+        with pytest.raises(ObjectError) as error:
+            _load(case)
+        message = str(error.value)
+        assert case.reason in message and "\n" not in message and message.startswith(str(case.path))
+        return
+    spec, notes = _load(case)
+    if case.verdict == "repaired":
+        assert any(("repaired" in n or "inertia" in n or "shells" in n) for n in notes), notes
+    if case.reason:
+        assert any(case.reason in n for n in notes), notes
+    assert case.volume is not None
+    assert spec.volume == pytest.approx(case.volume, rel=0.02)  # the solid the file describes
+    assert spec.mass > 0 and np.all(np.linalg.eigvalsh(spec.inertia_matrix()) > 0)
+    assert inertia_problem(spec.mass, spec.inertia_matrix(), spec.volume) is None
+    assert 1 <= len(spec.pieces) <= 16
+
+
+def test_cells_that_share_faces_are_one_object_with_the_exact_volume():
+    a = trimesh.creation.box((0.04, 0.04, 0.04))
+    b = trimesh.creation.box((0.04, 0.04, 0.04)).apply_translation([0.04, 0.0, 0.0])  # shares a face
+    shells, _ = repair.closed_shells(trimesh.util.concatenate([a, b]))
+    result = solid.solid_of_shells(shells)
+    assert len(result.components) == 1 and result.components[0].volume == pytest.approx(2 * 0.04**3, rel=1e-6)
+
+
+def test_the_join_gap_decides_connectivity_and_the_error_names_the_smallest_gap():
+    a = trimesh.creation.box((0.05, 0.05, 0.05))
+    b = trimesh.creation.box((0.05, 0.05, 0.05)).apply_translation([0.053, 0.0, 0.0])  # a 3 mm gap
+    assert solid.join_gap(0.05) == pytest.approx(0.002)
+    assert solid.join_gap(0.5) == pytest.approx(0.01)
+    apart = solid.solid_of_shells([a, b])
+    assert len(apart.components) == 2 and apart.smallest_gap == pytest.approx(0.003, abs=0.0005)
+    joined = solid.solid_of_shells([a, b], gap=0.004)
+    assert len(joined.components) == 1 and joined.components[0].volume == pytest.approx(2 * 0.05**3, rel=1e-6)
+    inner = trimesh.creation.icosphere(radius=0.01)  # wholly inside a: part of it, counted once
+    assert solid.solid_of_shells([a, inner]).components[0].volume == pytest.approx(0.05**3, rel=1e-6)
+
+
+def test_inertia_checks():
+    box = np.diag([1.0, 1.0, 1.5]) * 1e-4
+    assert inertia_problem(0.1, box, volume=1e-4, radius=0.06) is None
+    assert "positive-definite" in inertia_problem(0.1, np.diag([1e-4, 1e-4, 0.0]))
+    assert "triangle inequality" in inertia_problem(0.1, np.diag([1e-4, 1e-4, 3e-4]))
+    assert "density" in inertia_problem(100.0, box, volume=1e-4)
+    assert "exceeds" in inertia_problem(0.1, np.eye(3), volume=1e-4, radius=0.06)  # 1 kg·m² on 0.1 kg
+    assert "non-finite" in inertia_problem(0.1, np.full((3, 3), np.nan))
+
+
+def test_a_placeholder_inertia_is_replaced_or_with_inertia_file_refused(zoo, capsys):
+    (urdf,) = [c for c in zoo if c.defect == "urdf_placeholder_inertia"]  # izz = 0 (seed 0)
+    with pytest.warns(InertiaWarning, match=r"not positive-definite \(principal moments 0, 0.1, 0.1"):
+        spec = resolve_user_object(str(urdf.path))
+    assert spec.mass == pytest.approx(0.1) and np.all(np.linalg.eigvalsh(spec.inertia_matrix()) > 0)
+    assert cli.main(["objects", "check", str(urdf.path), "--inertia", "file"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "the file's inertia cannot be simulated" in err[0]
+
+
+def test_objects_check_reports_and_refuses(zoo, capsys, tmp_path):
+    (gaps,) = [c for c in zoo if c.defect == "hull_gaps"]
+    replay = tmp_path / "check.html"
+    assert cli.main(["objects", "check", str(gaps.path), "--json", "--replay", str(replay)]) == 0
+    report = json.loads(capsys.readouterr().out.strip().splitlines()[-1])
+    assert any("closed shells within" in n for n in report["notes"])
+    assert report["volume"] == pytest.approx(gaps.volume, rel=0.01) and report["pieces"] >= 2
+    assert replay.stat().st_size > 10_000
+    (apart,) = [c for c in zoo if c.defect == "separate"]
+    assert cli.main(["objects", "check", str(apart.path)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "2 separate parts" in err[0] and "smallest gap is" in err[0]
+
+
+def test_an_mjcf_object_with_a_placeholder_inertia_is_grasped_without_a_simulation_error(zoo, short_scenario):
+    (case,) = [c for c in zoo if c.defect == "mjcf_placeholder_inertia"]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        record = trial.run(TrialSpec(str(case.path), "oracle", "box", 0), scenario=short_scenario)
+    assert record.failure != SIMULATION_ERROR, record.detail
+
+
+@pytest.mark.slow
+def test_an_oracle_grasp_on_each_accepted_class_ends_in_no_simulation_error(zoo, short_scenario):
+    failures = {}
+    for case in zoo:
+        if case.verdict == "refused":
+            continue
+        spec = TrialSpec(str(case.path), "oracle", "box", 0, **({"scale": case.scale} if case.scale != 1.0 else {}))
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            record = trial.run(spec, scenario=short_scenario)
+        if record.failure == SIMULATION_ERROR:
+            failures[case.name] = record.detail
+    assert not failures
