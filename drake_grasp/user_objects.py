@@ -102,6 +102,34 @@ def _solid_from_mesh(mesh: trimesh.Trimesh, label: str, join_gap: float | None =
     return _user_solid(shells, label, keep_largest, join_gap)
 
 
+def _cached_solid(mesh: trimesh.Trimesh, label: str, key: str, join_gap: float | None,
+                  keep_largest: bool) -> trimesh.Trimesh:
+    """:func:`_solid_from_mesh`, cached under `key` (a hash of the file's content and the options)
+    beside the decompositions: a second load reads the repaired, joined solid and repeats its notes.
+    A refused file is not cached (its error is computed again, and is the same)."""
+    path = cache_dir() / "solids" / f"{key}-i{IMPORT_VERSION}.npz"
+    if path.exists():
+        stored = np.load(path, allow_pickle=False)
+        for note in json.loads(str(stored["notes"])):
+            warnings.warn(f"{label}: {note}", MeshNote, stacklevel=3)
+        return trimesh.Trimesh(stored["vertices"], stored["faces"], process=False)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        solid = _solid_from_mesh(mesh, label, join_gap, keep_largest)
+    notes = []
+    for w in caught:
+        text = str(w.message)
+        if issubclass(w.category, MeshNote) and text.startswith(f"{label}: "):
+            notes.append(text[len(label) + 2:])
+        warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    staging = path.with_name(f"{path.stem}.{os.getpid()}.tmp.npz")
+    np.savez(staging, vertices=np.asarray(solid.vertices, float), faces=np.asarray(solid.faces, np.int64),
+             notes=json.dumps(notes))
+    os.replace(staging, path)  # atomic: a concurrent load sees the whole file or none
+    return solid
+
+
 def _load_checked_mesh(path: Path, label: str, scale: float, join_gap: float | None = None,
                        keep_largest: bool = False) -> trimesh.Trimesh:
     """:func:`_read_mesh`, then :func:`_solid_from_mesh`."""
@@ -393,7 +421,8 @@ def object_from_triangles(
     if len(mesh.faces) > MAX_FACES:  # Said first: what follows takes a while on such a mesh.
         warnings.warn(f"{label}: {len(mesh.faces):,} faces; simplifying to {MAX_FACES:,} for contact and rendering",
                       MeshNote, stacklevel=2)
-    mesh = _solid_from_mesh(mesh, label, join_gap, largest_component)
+    solid_key = hashlib.sha256(f"{digest}|{scale!r}|{join_gap!r}|{largest_component}".encode()).hexdigest()[:24]
+    mesh = _cached_solid(mesh, label, solid_key, join_gap, largest_component)
     _warn_units(mesh, label, scale)
     settings = (f"{scale!r}|{max_pieces}|{COACD_THRESHOLD!r}|{CONVEXITY_TOLERANCE!r}|{largest_component}|{MAX_FACES}"
                 f"|{join_gap!r}")
