@@ -200,50 +200,67 @@ def merge_pieces(
     within `near` (m) of each other (any two, if a piece has none).
 
     A merged piece is the convex hull of both: it lies outside their union by the volume it adds.
+    Pair costs wait in a heap and a merge computes only the new piece's, so merging hundreds of
+    cells stays cheap.
 
     Returns:
-        The pieces' points and the volume (m³) the merges added, a bound of how much the union of
-        the pieces grew.
+        The pieces' points (those not merged in the order given, merged ones after) and the volume
+        (m³) the merges added, a bound of how much the union of the pieces grew.
     """
-    pieces = [np.asarray(p, float) for p in pieces]
-    volumes = [_hull_volume(p) for p in pieces]
+    import heapq
+    import itertools
+
+    live: dict[int, np.ndarray] = {}
+    volume: dict[int, float] = {}
+    thin: dict[int, bool] = {}
+    boxes: dict[int, tuple[np.ndarray, np.ndarray]] = {}
+    ids = itertools.count()
+    heap: list[tuple[float, int, int]] = []
     added = 0.0
 
+    def add(points: np.ndarray, merged: bool = False) -> int:
+        key = next(ids)
+        hull = _hull(points)
+        if hull is not None and merged:  # a merged piece keeps only its hull's vertices
+            points = points[np.sort(hull.vertices)]
+        live[key] = points
+        volume[key] = float(hull.volume) if hull is not None else 0.0
+        thin[key] = hull is None or min_width(hull.points, _outward_faces(hull)) < min_thickness
+        boxes[key] = (points.min(axis=0), points.max(axis=0))
+        return key
+
     def neighbours(i: int) -> list[int]:
-        lo, hi = pieces[i].min(axis=0) - near, pieces[i].max(axis=0) + near
-        found = [j for j in range(len(pieces)) if j != i
-                 and np.all(pieces[j].min(axis=0) <= hi) and np.all(pieces[j].max(axis=0) >= lo)]
-        return found or [j for j in range(len(pieces)) if j != i]
+        lo, hi = boxes[i][0] - near, boxes[i][1] + near
+        found = [j for j in live if j != i and np.all(boxes[j][0] <= hi) and np.all(boxes[j][1] >= lo)]
+        return found or [j for j in live if j != i]
 
     def cost(i: int, j: int) -> float:
-        return _hull_volume(np.vstack([pieces[i], pieces[j]])) - volumes[i] - volumes[j]
+        return _hull_volume(np.vstack([live[i], live[j]])) - volume[i] - volume[j]
 
-    def merge(i: int, j: int) -> None:
+    def merge(i: int, j: int) -> int:
         nonlocal added
-        joint = np.vstack([pieces[i], pieces[j]])
-        hull = _hull(joint)
-        joint = joint[hull.vertices] if hull is not None else joint
-        volume = _hull_volume(joint)
-        added += max(volume - volumes[i] - volumes[j], 0.0)
-        for k in sorted((i, j), reverse=True):
-            del pieces[k], volumes[k]
-        pieces.append(joint)
-        volumes.append(volume)
+        key = add(np.vstack([live.pop(i), live.pop(j)]), merged=True)
+        added += max(volume[key] - volume[i] - volume[j], 0.0)
+        return key
 
-    def thin(i: int) -> bool:
-        hull = _hull(pieces[i])
-        return hull is None or min_width(hull.points, _outward_faces(hull)) < min_thickness
-
-    while len(pieces) > 1:
-        thin_pieces = [i for i in range(len(pieces)) if thin(i)]
+    for points in pieces:
+        add(np.asarray(points, float))
+    while len(live) > 1:
+        thin_pieces = [i for i in live if thin[i]]
         if not thin_pieces:
             break
         i = thin_pieces[0]
         merge(i, min(neighbours(i), key=lambda j: cost(i, j)))
-    while len(pieces) > max(max_pieces, 1):
-        best = min(((cost(i, j), i, j) for i in range(len(pieces)) for j in neighbours(i) if j > i),
-                   default=None)
-        if best is None:
-            break
-        merge(best[1], best[2])
-    return pieces, added
+    if len(live) > max(max_pieces, 1):
+        for i in list(live):
+            for j in neighbours(i):
+                if j > i:
+                    heapq.heappush(heap, (cost(i, j), i, j))
+    while len(live) > max(max_pieces, 1) and heap:
+        _, i, j = heapq.heappop(heap)
+        if i not in live or j not in live:
+            continue  # one of them was merged already
+        key = merge(i, j)
+        for other in neighbours(key):
+            heapq.heappush(heap, (cost(key, other), other, key))
+    return list(live.values()), added

@@ -119,29 +119,23 @@ def closed_parts(mesh: trimesh.Trimesh) -> list[trimesh.Trimesh]:
 
 
 def _drop_duplicates(faces: np.ndarray, report: RepairReport) -> np.ndarray:
-    """Faces with duplicates resolved: same winding, one kept; opposite windings, both dropped."""
-    key = np.sort(faces, axis=1)
-    _, inverse, counts = np.unique(key, axis=0, return_inverse=True, return_counts=True)
+    """Faces with duplicates resolved: of copies wound opposite ways, pairs are dropped (internal
+    walls); of the copies left (all wound one way), one is kept. Order is kept."""
+    _, inverse, counts = np.unique(np.sort(faces, axis=1), axis=0, return_inverse=True, return_counts=True)
     inverse = inverse.ravel()
-    keep = np.ones(len(faces), dtype=bool)
-    for group in np.flatnonzero(counts > 1):
-        members = np.flatnonzero(inverse == group)
-        # Orientation of each copy: an even or odd permutation of the sorted triple.
-        parity = np.array([_parity(faces[m]) for m in members])
-        forward, backward = members[parity], members[~parity]
-        pairs = min(len(forward), len(backward))
-        report.internal_walls += 2 * pairs
-        keep[forward[:pairs]] = keep[backward[:pairs]] = False
-        rest = np.concatenate([forward[pairs:], backward[pairs:]])
-        report.duplicate_faces += max(len(rest) - 1, 0)
-        keep[rest[1:]] = False
+    a, b, c = faces[:, 0], faces[:, 1], faces[:, 2]
+    forward = ((a < b).astype(int) + (b < c) + (c < a)) == 2  # an even rotation of the sorted order
+    n_forward = np.bincount(inverse, weights=forward, minlength=len(counts)).astype(int)
+    pairs = np.minimum(n_forward, counts - n_forward)
+    rest = counts - 2 * pairs
+    report.internal_walls += int(2 * pairs.sum())
+    report.duplicate_faces += int(np.maximum(rest - 1, 0).sum())
+    majority = n_forward > counts - n_forward  # the winding of the copies left
+    candidates = np.flatnonzero((rest[inverse] > 0) & (forward == majority[inverse]))
+    _, first = np.unique(inverse[candidates], return_index=True)
+    keep = np.zeros(len(faces), dtype=bool)
+    keep[candidates[first]] = True
     return faces[keep]
-
-
-def _parity(face: np.ndarray) -> bool:
-    """Whether a face's vertex order is an even rotation of its sorted order."""
-    a, b, c = face
-    return bool((a < b) + (b < c) + (c < a) == 2)
 
 
 def _meshfix(patch: trimesh.Trimesh) -> trimesh.Trimesh | None:
@@ -238,8 +232,10 @@ def _file_parts(mesh: trimesh.Trimesh) -> list[np.ndarray]:
 def closed_shells(mesh: trimesh.Trimesh, label: str = "mesh") -> tuple[list[trimesh.Trimesh], RepairReport]:
     """The closed, outward-wound shells of a mesh (metres), repaired as the module says.
 
-    The file's own parts (vertex lists it keeps apart: cells, hulls) are repaired one by one, so
-    that cells sharing a face are not welded into edges of four faces.
+    The file's own parts (vertex lists it keeps apart) that are closed once their own vertices are
+    welded (cells, hulls) are repaired one by one, so that cells sharing a face are not welded into
+    edges of four faces; the parts that are open on their own (a visual mesh split by material, a
+    triangle soup) are welded together first, since together they may close.
 
     Raises:
         RepairError: nothing in the mesh encloses a volume (an open sheet, a flat patch).
@@ -248,8 +244,19 @@ def closed_shells(mesh: trimesh.Trimesh, label: str = "mesh") -> tuple[list[trim
     mesh = trimesh.Trimesh(np.asarray(mesh.vertices, float), np.asarray(mesh.faces, np.int64), process=False)
     shells = []
     opened = [0.0, 0.0]
-    for indices in _file_parts(mesh):
+    parts = _file_parts(mesh)
+    pooled = []
+    for indices in parts:
         part = trimesh.Trimesh(mesh.vertices, mesh.faces[indices], process=False)
+        if len(parts) > 1:
+            welded = part.copy()
+            welded.merge_vertices(merge_tex=True, merge_norm=True)
+            if not welded.is_watertight:
+                pooled.append(indices)
+                continue
+        shells += _part_shells(part, report, opened)
+    if pooled:
+        part = trimesh.Trimesh(mesh.vertices, mesh.faces[np.concatenate(pooled)], process=False)
         shells += _part_shells(part, report, opened)
     if report.closed_patches:
         report.volume_before, report.volume_after = opened
