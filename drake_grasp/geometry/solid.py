@@ -31,6 +31,7 @@ from scipy.spatial import cKDTree
 DEFAULT_JOIN_GAP = 0.002  # m: shells this close are one object (or JOIN_GAP_FRACTION of its size)
 JOIN_GAP_FRACTION = 0.02  # of the object's largest extent, when that is larger
 MAX_SURFACE_SAMPLES = 400_000  # the sampling of every shell together is coarsened to about this
+GAP_SAMPLES = 20_000  # points a side when measuring the smallest gap between separate parts
 
 
 def join_gap(extent: float, gap: float | None = None) -> float:
@@ -104,8 +105,11 @@ class _Voxels:
     def __init__(self, points: np.ndarray, origin: np.ndarray, gap: float):
         self.points = points
         cells = np.floor((points - origin) / gap).astype(np.int64) + 1
-        self.codes = self._encode(cells)
-        unique = np.unique(self.codes)
+        codes = self._encode(cells)
+        self.order = np.argsort(codes, kind="stable")
+        self.sorted_codes = codes[self.order]
+        unique = np.unique(codes)
+        self.unique = unique
         k = self._K
         self.cells = np.column_stack([unique % k, (unique // k) % k, unique // (k * k)])
         self._tree = None
@@ -130,7 +134,14 @@ class _Voxels:
 
     def near(self, other: "_Voxels", gap: float) -> bool:
         """Whether any point of this shell lies within `gap` of a point of `other`."""
-        candidates = self.points[np.isin(self.codes, other.around)]
+        shared = np.intersect1d(self.unique, other.around, assume_unique=True)
+        if len(shared) == 0:
+            return False
+        left = np.searchsorted(self.sorted_codes, shared, side="left")
+        right = np.searchsorted(self.sorted_codes, shared, side="right")
+        lengths = right - left
+        starts = np.repeat(left - np.concatenate([[0], np.cumsum(lengths)[:-1]]), lengths)
+        candidates = self.points[self.order[starts + np.arange(lengths.sum())]]
         for start in range(0, len(candidates), 2048):  # stop at the first point found near
             distances, _ = other.tree.query(candidates[start:start + 2048], k=1,
                                             distance_upper_bound=gap * (1 + 1e-9))
@@ -165,8 +176,10 @@ def union(shells: list[trimesh.Trimesh]) -> trimesh.Trimesh:
     meshes = list(rest)
     if solids:
         result = manifold3d.Manifold.batch_boolean(solids, manifold3d.OpType.Add).to_mesh()
+        # process=False: Manifold keeps apart the vertices of solids that only touch; welding them
+        # would make edges of four faces where the union is, in fact, two closed solids.
         meshes.insert(0, trimesh.Trimesh(np.asarray(result.vert_properties, dtype=float)[:, :3],
-                                         np.asarray(result.tri_verts, dtype=np.int64), process=True))
+                                         np.asarray(result.tri_verts, dtype=np.int64), process=False))
     return meshes[0] if len(meshes) == 1 else trimesh.util.concatenate(meshes)
 
 
@@ -215,10 +228,13 @@ def solid_of_shells(shells: list[trimesh.Trimesh], gap: float | None = None) -> 
     components.sort(key=lambda c: -c.volume)
     smallest = float("inf")
     if count > 1:
+        # Measured on every k-th point (at most GAP_SAMPLES a side): the message's number, not a decision.
         everything = np.vstack(points)
         label_of_point = labels[np.concatenate([np.full(len(p), i) for i, p in enumerate(points)])]
         for label in range(count):
-            mine = label_of_point == label
-            distances, _ = cKDTree(everything[~mine]).query(everything[mine], k=1)
+            mine, others = everything[label_of_point == label], everything[label_of_point != label]
+            mine = mine[:: max(1, len(mine) // GAP_SAMPLES)]
+            others = others[:: max(1, len(others) // GAP_SAMPLES)]
+            distances, _ = cKDTree(others).query(mine, k=1)
             smallest = min(smallest, float(distances.min()))
     return Solid(tuple(components), n, gap, smallest)
