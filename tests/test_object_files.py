@@ -126,3 +126,21 @@ def test_an_oracle_grasp_on_each_accepted_class_ends_in_no_simulation_error(zoo,
         if record.failure == SIMULATION_ERROR:
             failures[case.name] = record.detail
     assert not failures
+
+
+def test_a_gltf_file_is_turned_z_up(tmp_path):
+    tall = trimesh.creation.box((0.04, 0.12, 0.06))  # tall along y: up, in glTF's convention
+    path = tmp_path / "tall.glb"
+    tall.export(path)
+    spec = resolve_user_object(str(path))
+    assert sorted(spec.extents) == pytest.approx([0.04, 0.06, 0.12])
+    assert spec.extents[2] == pytest.approx(0.12)  # its up is z on the table
+
+
+def test_an_articulated_mjcf_model_is_refused(tmp_path):
+    path = tmp_path / "hinged.xml"
+    path.write_text('<mujoco><worldbody><body><geom type="box" size="0.02 0.02 0.02"/>'
+                    '<body pos="0.05 0 0"><joint type="hinge"/><geom type="box" size="0.02 0.02 0.02"/></body>'
+                    "</body></worldbody></mujoco>")
+    with pytest.raises(ObjectError, match="articulated"):
+        resolve_user_object(str(path))
