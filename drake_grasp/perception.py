@@ -41,7 +41,7 @@ from drake_grasp.objects import ObjectSpec
 from drake_grasp.primitives.camera import SilhouetteCamera
 from drake_grasp.primitives.camera_model import CameraIntrinsics
 from drake_grasp.primitives.depth import DepthPrimitive
-from drake_grasp.primitives.estimate import ObjectEstimate, ObjectEstimator
+from drake_grasp.primitives.estimate import OBJECT_NOT_FOUND, ObjectEstimate, ObjectEstimator
 from drake_grasp.primitives.principal_axis import PrincipalAxisPrimitive
 from drake_grasp.primitives.resemblance import ShapeResemblancePrimitive
 from drake_grasp.primitives.scores import SHAPES
@@ -490,6 +490,8 @@ def comparison_record(result: ExplorationResult, spec: ObjectSpec) -> dict:
         record["errors"] = {"centre": errors.centre, "depth": errors.depth, "axis_deg": errors.axis_deg,
                             "extents": errors.extents.tolist(), "shape_correct": errors.shape_correct,
                             "within_tolerances": errors.passes()}
+        if estimate.problem():  # seen, but a trial would end here: perception failed
+            record["problem"] = estimate.problem()
     return record
 
 
@@ -498,7 +500,9 @@ def format_comparison(record: dict) -> list[str]:
     estimate, truth = record["estimate"], record["truth"]
     timings = estimate["timings"]
     if estimate["status"] != "ok":
-        return [f"{record['object']}: {estimate['status']} (the camera did not see it from the start pose); "
+        why = ("the camera did not see it from the start pose" if estimate["status"] == OBJECT_NOT_FOUND else
+               "the camera saw it, but every silhouette was cut by the image border")
+        return [f"{record['object']}: {estimate['status']} ({why}); "
                 f"{timings.get('sim_time', 0.0):.1f} s simulated in {timings.get('wall_time', 0.0):.1f} s"]
 
     def vector(v, digits=3):
@@ -524,4 +528,6 @@ def format_comparison(record: dict) -> list[str]:
     lines.append(f"{record['object']}: {record['best_shape']} (resemblance {res[record['best_shape']]:.2f}); "
                  f"centre {errors['centre'] * 1000:.1f} mm, depth {errors['depth'] * 100:+.1f} %, axis {axis_error}; "
                  f"{timings['sim_time']:.1f} s simulated, {timings['frames']} frames, {timings['wall_time']:.1f} s wall")
+    if record.get("problem"):
+        lines.append(f"perception failed: {record['problem']} (a trial would end here)")
     return lines

@@ -173,8 +173,8 @@ def markdown(rows: dict, befores: list[dict], label: str, steps: int, repeats: i
                 continue
             catalogue = [source[c]["steps_per_cpu_second"] for c in PLANNER_CATALOGUE if c in source]
             planner.append(f"{source[name]['steps_per_cpu_second'] / statistics.mean(catalogue):.2f}")
-            if source[name].get("failure") == "simulation error":
-                trial.append("n/a (simulation error)")
+            if source[name].get("failure") in ("simulation error", "perception failed"):  # ended early
+                trial.append(f"n/a ({source[name]['failure']})")
             elif "trial_cpu_time" in source[name] and "trial_cpu_time" in source.get("bottle_case", {}):
                 trial.append(f"{source[name]['trial_cpu_time'] / source['bottle_case']['trial_cpu_time']:.2f}")
             else:

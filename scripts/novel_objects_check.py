@@ -5,7 +5,8 @@ novel-object generator (`drake-grasp objects generate`), each through every orac
 cylindrical, box, from the true pose) and one trial of the whole compliance-centric algorithm (camera
 only, its own choice), with the default scenario (the full 10 s hold) and seed 0. A failed grasp is
 fine; a simulation error is not. Prints and writes (with --report) the counts of outcomes, per
-method and per object class.
+method and per object class, and each simulation error and perception failure with its detail (a
+perception failure is an outcome of its own: the camera's estimate could not place a grasp).
 
 Run: .venv/bin/python scripts/novel_objects_check.py [--count 40] [--seed 0] [--workers 2]
      [--out out/novel-check] [--report docs/results/novel_objects_check.md]
@@ -20,7 +21,7 @@ from drake_grasp.experiments.executors import LocalExecutor
 from drake_grasp.experiments.novel import ensure_objects
 from drake_grasp.experiments.results import write_atomically
 from drake_grasp.experiments.runner import TrialSpec, run_trials
-from drake_grasp.trial import SIMULATION_ERROR
+from drake_grasp.trial import PERCEPTION_FAILED, SIMULATION_ERROR
 
 GRASPS = ("spherical", "cylindrical", "box")
 
@@ -43,7 +44,7 @@ def main() -> int:
     shape_class = {o["file"]: o["class"] for o in objects}
     outcomes = collections.Counter()
     per_class = collections.defaultdict(collections.Counter)
-    crashed = []
+    crashed, unperceived = [], []
     for r in rows:
         outcome = "success" if str(r["success"]) in ("1", "True") else r["failure"]
         method = "oracle" if r["method"] == "oracle" else "compliant (camera, own choice)"
@@ -51,6 +52,8 @@ def main() -> int:
         per_class[shape_class[r["object"]]][outcome] += 1
         if r["failure"] == SIMULATION_ERROR:
             crashed.append(f"{pathlib.Path(r['object']).name} {r['method']}/{r['grasp'] or 'own'}: {r['detail']}")
+        if r["failure"] == PERCEPTION_FAILED:
+            unperceived.append(f"{pathlib.Path(r['object']).name} {r['method']}/{r['grasp'] or 'own'}: {r['detail']}")
     errors = sum(n for (_, outcome), n in outcomes.items() if outcome == SIMULATION_ERROR)
     lines = [f"# Novel objects through whole trials ({len(objects)} objects, generator seed {args.seed})", "",
              f"Made by `scripts/novel_objects_check.py --count {args.count} --seed {args.seed}`: every oracle grasp "
@@ -65,6 +68,8 @@ def main() -> int:
     lines += [f"| {c} | " + " | ".join(str(per_class[c][n]) for n in names) + " |" for c in sorted(per_class)]
     if crashed:
         lines += ["", "Simulation errors:", *[f"- {c}" for c in crashed]]
+    if unperceived:
+        lines += ["", "Perception failures:", *[f"- {c}" for c in unperceived]]
     text = "\n".join(lines) + "\n"
     print(text)
     if args.report:

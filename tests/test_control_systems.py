@@ -16,7 +16,7 @@ from drake_grasp.control.gravity_compensation import GravityCompensation
 from drake_grasp.grasps import oracle_estimate, plan_compliant_grasp
 from drake_grasp.hand import HandAction
 from drake_grasp.objects import paper_object
-from drake_grasp.primitives.estimate import OBJECT_NOT_FOUND, ObjectEstimator
+from drake_grasp.primitives.estimate import OBJECT_NOT_FOUND, PERCEPTION_FAILED, ObjectEstimator
 from drake_grasp.primitives.sequencer import ExplorationPhase
 from drake_grasp.primitives.silhouette import CameraSample
 from drake_grasp.protocol import ExecutionTimes
@@ -79,9 +79,24 @@ def test_object_estimator_gathers_the_primitives_outputs():
 
 
 def test_object_estimator_reports_an_object_never_found():
-    for phase, centre in ((ExplorationPhase.NOT_FOUND, [0.5, 0.0, 0.1]), (ExplorationPhase.DONE, [np.nan] * 3)):
+    for phase, centre in ((ExplorationPhase.NOT_FOUND, [0.5, 0.0, 0.1]), (ExplorationPhase.RESEMBLANCE, [np.nan] * 3)):
         estimator, context = _estimator_context(phase, centre)
         assert estimator.GetOutputPort("estimate").Eval(context).status == OBJECT_NOT_FOUND
+
+
+def test_object_estimator_reports_an_object_seen_but_never_measured():
+    """Seen (the exploration ran to DONE) but no usable silhouette gave a centre: perception failed,
+    with the reason; an elongated object whose axis never converged: found, but it cannot be grasped."""
+    estimator, context = _estimator_context(ExplorationPhase.DONE, [np.nan] * 3)
+    estimate = estimator.GetOutputPort("estimate").Eval(context)
+    assert estimate.status == PERCEPTION_FAILED and not estimate.found
+    assert "no usable silhouette" in estimate.problem()
+    estimator, context = _estimator_context(ExplorationPhase.DONE, [0.55, 0.0, 0.1], axis_info=(1.0, 3.0, 0.0),
+                                            axis=(np.nan,) * 3)
+    estimate = estimator.GetOutputPort("estimate").Eval(context)
+    assert estimate.found and "principal axis did not converge" in estimate.problem()
+    with pytest.raises(ValueError, match="principal axis did not converge"):
+        estimate.as_grasp_estimate()
 
 
 def test_grasp_executor_runs_its_phases_on_time_without_contact(station):

@@ -14,7 +14,7 @@ from drake_grasp.control.arm_motion import UNREACHABLE
 from drake_grasp.control.grasp_executor import GraspPhase
 from drake_grasp.control.supervisor import CompliantGraspSupervisor
 from drake_grasp.objects import paper_object
-from drake_grasp.primitives.estimate import OBJECT_NOT_FOUND, ObjectEstimate
+from drake_grasp.primitives.estimate import OBJECT_NOT_FOUND, PERCEPTION_FAILED, ObjectEstimate
 from drake_grasp.primitives.sequencer import ExplorationPhase
 from drake_grasp.station import MakeStation, load_scenario
 from drake_grasp import trial
@@ -23,9 +23,10 @@ from drake_grasp.estimate_error import EstimateError
 CAMERA, GRASP = InputPortIndex(1), InputPortIndex(2)
 
 
-def _ball_estimate(centre=(0.55, 0.0, 0.10), resemblances=(0.9, 0.1, 0.0)) -> ObjectEstimate:
+def _ball_estimate(centre=(0.55, 0.0, 0.10), resemblances=(0.9, 0.1, 0.0), extents=(0.2, 0.2, 0.2),
+                   principal_axis=None) -> ObjectEstimate:
     return ObjectEstimate(status="ok", centre=np.array(centre), depth=0.35, camera_position=np.array([0.55, 0, 0.45]),
-                          axes=np.eye(3), extents=np.array([0.2, 0.2, 0.2]),
+                          axes=np.eye(3), extents=np.array(extents), principal_axis=principal_axis,
                           resemblances=dict(zip(("sphere", "cylinder", "box"), resemblances)))
 
 
@@ -93,6 +94,34 @@ def test_no_object_or_no_reach_ends_the_sequence_with_the_reason():
     far, context = _decide(_ball_estimate(centre=(3.0, 0.0, 0.1)), ExplorationPhase.DONE)
     assert far.phase(context) == GraspPhase.DONE and far.progress(context).outcome == UNREACHABLE
     assert far.decision(context).executed == "spherical"
+
+
+def test_an_estimate_that_cannot_place_a_grasp_ends_the_sequence_as_perception_failed():
+    """A size that is not positive, a value that is not finite, an axis that did not converge: the
+    supervisor ends the sequence at the decision with PERCEPTION_FAILED and the reason, before any
+    grasp is computed (it never reaches the grasp's own check, which would throw)."""
+    cases = {"size not positive": _ball_estimate(extents=(0.04, 0.0, 0.144)),
+             "extents not finite": _ball_estimate(extents=(0.04, np.nan, 0.144)),
+             "centre not finite": _ball_estimate(centre=(0.55, np.inf, 0.1)),
+             "principal axis did not converge": _ball_estimate(principal_axis=np.full(3, np.nan)),
+             "resemblance not finite": _ball_estimate(resemblances=(np.nan, 0.1, 0.0)),
+             "no usable silhouette": ObjectEstimate(status=PERCEPTION_FAILED)}
+    for why, estimate in cases.items():
+        supervisor, context = _decide(estimate, ExplorationPhase.DONE, forced_grasp="box")
+        progress = supervisor.progress(context)
+        assert supervisor.phase(context) == GraspPhase.DONE, why
+        assert progress.outcome == PERCEPTION_FAILED and why in progress.detail, (why, progress.detail)
+        decision = supervisor.decision(context)
+        assert decision.plan is None and decision.chosen == "" and decision.executed == "box"
+        assert supervisor.GetOutputPort("arm_source").Eval(context) == CAMERA  # the arm never left the camera
+    # The trial's record: its own failure reason, the why as its detail, and both in the summary line.
+    record = trial.TrialRecord("carton", "compliant", "", 1, False, PERCEPTION_FAILED,
+                               detail=cases["size not positive"].problem())
+    assert PERCEPTION_FAILED in trial.FAILURES and trial.SIMULATION_ERROR != PERCEPTION_FAILED
+    assert "FAILED (perception failed: size not positive along every axis: extents [0.040, 0.000, 0.144] m" \
+        in record.summary()
+    # A width the fit left at its bound (1.25e-21 m, a real trial's) is no size either.
+    assert "size not positive" in _ball_estimate(extents=(0.106, 1.25e-21, 0.146)).problem()
 
 
 def test_the_whole_algorithm_grasps_the_soccer_ball_from_the_camera_alone(short_scenario):

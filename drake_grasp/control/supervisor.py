@@ -22,8 +22,11 @@ primitives:
   (`GraspExecutor`), from where the exploration left the arm; the switch now routes the supervisor's
   arm command.
 
-If the object was never seen, or the arm cannot reach the chosen grasp, the sequence ends (GraspPhase.DONE)
-with that outcome instead of grasping.
+If the object was never seen (`OBJECT_NOT_FOUND`), the estimate cannot place a grasp (`PERCEPTION_FAILED`:
+a size that is not positive, a principal axis that did not converge, a value that is not finite, no
+usable silhouette; `ObjectEstimate.problem` says which), or the arm cannot reach the chosen grasp, the
+sequence ends (GraspPhase.DONE) with that outcome and its detail instead of grasping: a trial's failure
+reason, never a simulation error.
 """
 
 import dataclasses
@@ -38,7 +41,7 @@ from drake_grasp.control.grasp_executor import ConnectGraspExecutor, GraspExecut
 from drake_grasp.estimate_error import EstimateError, perturb_estimate
 from drake_grasp.protocol import ExecutionTimes
 from drake_grasp.grasps import GRASP_OF_SHAPE, GraspPlan, GraspType, plan_compliant_grasp
-from drake_grasp.primitives.estimate import OBJECT_NOT_FOUND, ObjectEstimate
+from drake_grasp.primitives.estimate import OBJECT_NOT_FOUND, PERCEPTION_FAILED, ObjectEstimate
 from drake_grasp.primitives.sequencer import phase_value
 
 
@@ -49,10 +52,11 @@ class Decision:
     Attributes:
         time: when, s.
         estimate: the primitives' estimate it decided on (without any added estimate error).
-        chosen: the grasp of the most resembling shape ("" if the object was not found).
+        chosen: the grasp of the most resembling shape ("" if the object was not found or its
+            estimate cannot place a grasp).
         executed: the grasp executed: `chosen`, or the one the caller forced.
         plan: the executed grasp's plan, from the estimate with the added error if any (None if the
-            object was not found).
+            object was not found or its estimate cannot place a grasp).
     """
 
     time: float
@@ -118,9 +122,12 @@ class CompliantGraspSupervisor(GraspExecutor):
             return progress
         t = context.get_time()
         estimate: ObjectEstimate = self._estimate_port.Eval(context)
-        if not estimate.found:
+        problem = estimate.problem()
+        if problem:
             decision = Decision(t, estimate, "", self._forced_grasp or "", None)
-            return dataclasses.replace(self._end(progress, t, OBJECT_NOT_FOUND), decision=decision)
+            not_found = estimate.status == OBJECT_NOT_FOUND
+            outcome, detail = (OBJECT_NOT_FOUND, "") if not_found else (PERCEPTION_FAILED, problem)
+            return dataclasses.replace(self._end(progress, t, outcome, detail), decision=decision)
         chosen = GRASP_OF_SHAPE[estimate.best_shape]
         executed = self._forced_grasp or chosen
         plan = plan_compliant_grasp(executed, perturb_estimate(estimate.as_grasp_estimate(), self._estimate_error))

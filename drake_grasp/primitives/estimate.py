@@ -5,6 +5,12 @@ the principal axis and whether the object is elongated, the three shape resembla
 `ObjectEstimate` in the world frame. `ObjectEstimator` is the LeafSystem that does it inside the
 Diagram, so a supervisor reads one `estimate` port instead of a dozen; the exploration reads the same
 port when it ends.
+
+An estimate can fail in two ways, each a trial's failure reason of its own: the object was never
+seen (`OBJECT_NOT_FOUND`), or it was seen but what the primitives measured cannot place a grasp — a
+size that is not positive, a principal axis that did not converge, a value that is not finite
+(`PERCEPTION_FAILED`; `ObjectEstimate.problem` says which). The supervisor checks this when it
+decides, and ends the sequence with that reason instead of grasping.
 """
 
 import dataclasses
@@ -19,21 +25,28 @@ from drake_grasp.primitives.sequencer import ExplorationPhase, phase_value
 from drake_grasp.primitives.silhouette import CameraSample
 
 OBJECT_NOT_FOUND = "object not found"
+# The object was seen, but the estimate cannot place a grasp (`ObjectEstimate.problem` says why).
+PERCEPTION_FAILED = "perception failed"
+# An extent below this is no size (m): under a pixel at the exploration's distances (about 1.4 mm at
+# 0.3 m), so not measured but left by the bounded size fit at its bound, 0 (it gave 1.25e-21 m).
+MIN_EXTENT = 1e-3
 
 @dataclasses.dataclass
 class ObjectEstimate:
     """What one exploration found (world frame W; m, rad, s).
 
     Attributes:
-        status: "ok", or "object not found" (the object never came into view).
+        status: "ok"; "object not found" (the object never came into view); or "perception failed"
+            (it came into view, but no silhouette the depth primitive could use gave it a centre).
         centre: the object centre (where the rays through the silhouette centroids meet), or None.
         depth: distance from `camera_position` (the camera at the end) to the centre.
         camera_position: where the camera was when the exploration ended.
-        principal_axis: unit vector of the object's long axis, or None if the object is not elongated.
+        principal_axis: unit vector of the object's long axis, or None if the object is not elongated
+            (not finite when the object is elongated but the principal-axis primitive gave no axis).
         axes: 3×3, columns (a, b, c): a = the principal axis (or, for a round object, the direction of
             a silhouette side), b = horizontal across it, c = a × b (up).
-        extents: the object's size along a, b, c: length and width from the silhouette's tangent
-            planes; height = twice the centre's height above the table (it rests on the table).
+        extents: the object's size along a, b, c, m: the depth primitive's fit of the silhouettes'
+            tangent planes.
         resemblances: {"sphere", "cylinder", "box"} → resemblance in [0, 1].
         evidence: what the resemblances rest on (variations, invariances, roundness; see scores).
         elongation: the mean eccentricity of the silhouette over the exploration.
@@ -63,12 +76,37 @@ class ObjectEstimate:
             return None
         return max(SHAPES, key=lambda s: self.resemblances.get(s, 0.0))
 
+    def problem(self) -> str:
+        """Why this estimate cannot place a grasp ("" if it can): the object was not found; it was seen
+        but never gave a usable silhouette; or a value the grasps and the decision use (centre, axes,
+        extents, principal axis, resemblances) is missing, not finite, or an extent is not positive
+        (below `MIN_EXTENT`, m)."""
+        if self.status == PERCEPTION_FAILED:
+            return "no usable silhouette: the object was seen, but always cut by the image border (no centre)"
+        if not self.found:
+            return self.status
+        for name in ("centre", "axes", "extents"):
+            value = getattr(self, name)
+            if value is None:
+                return f"no {name}"
+            if not np.all(np.isfinite(value)):
+                return f"{name} not finite: {_short(value)}"
+        if self.principal_axis is not None and not np.all(np.isfinite(self.principal_axis)):
+            return "the principal axis did not converge (the object is elongated, but the axis primitive gave none)"
+        extents = np.asarray(self.extents, float)
+        if np.any(extents < MIN_EXTENT):
+            return f"size not positive along every axis: extents {_short(extents)} m (under 1 mm counts as 0)"
+        missing = [s for s in SHAPES if not math.isfinite(self.resemblances.get(s, math.nan))]
+        if missing:
+            return f"resemblance not finite: {', '.join(missing)}"
+        return ""
+
     def as_grasp_estimate(self):
         """This estimate as `drake_grasp.grasps.ObjectEstimate` (what the compliant grasps take)."""
         from drake_grasp.grasps import ObjectEstimate as GraspEstimate
 
-        if not self.found:
-            raise ValueError("no estimate: the object was not found")
+        if self.problem():
+            raise ValueError(f"no estimate: {self.problem()}")
         return GraspEstimate(center=np.array(self.centre), R_WB=np.array(self.axes), size=np.array(self.extents),
                              principal_axis=None if self.principal_axis is None else np.array(self.principal_axis),
                              source="camera")
@@ -88,6 +126,11 @@ class ObjectEstimate:
             return x
 
         return {f.name: plain(getattr(self, f.name)) for f in dataclasses.fields(self)}
+
+
+def _short(values) -> str:
+    """A vector in a reason: 3 decimals (m, or unitless)."""
+    return "[" + ", ".join(f"{float(v):.3f}" for v in np.ravel(values)) + "]"
 
 
 # Names of the box resemblance primitive's `evidence` entries kept in the estimate.
@@ -116,11 +159,23 @@ def estimate_axes(axis: np.ndarray, elongated: bool) -> tuple[np.ndarray, np.nda
 def gather_estimate(phase: ExplorationPhase, centre: np.ndarray, camera_position: np.ndarray, axis: np.ndarray,
                     axis_info: np.ndarray, extents: np.ndarray, resemblances: dict, evidence: np.ndarray
                     ) -> ObjectEstimate:
-    """The ObjectEstimate from the primitives' outputs (see `ObjectEstimator`'s ports for each)."""
-    if phase == ExplorationPhase.NOT_FOUND or not np.all(np.isfinite(centre)):
+    """The ObjectEstimate from the primitives' outputs (see `ObjectEstimator`'s ports for each).
+
+    Not found: the sequencer never saw the object (or, while it explores, no centre yet).
+    PERCEPTION_FAILED: the exploration is over and it saw the object, but no silhouette the depth
+    primitive could use (each one cut by the image border) gave it a centre. An elongated object
+    whose axis primitive gave no axis keeps a principal axis that is not finite (its axes fall back
+    to the world's), so that the supervisor does not grasp along an axis nobody measured.
+    """
+    no_centre = not np.all(np.isfinite(centre))
+    if phase == ExplorationPhase.NOT_FOUND or (no_centre and not phase.finished):
         return ObjectEstimate(status=OBJECT_NOT_FOUND)
+    if no_centre:
+        return ObjectEstimate(status=PERCEPTION_FAILED)
     elongated, mean_eccentricity = axis_info[0] > 0.5, axis_info[1]
     axes, principal_axis = estimate_axes(axis, elongated)
+    if elongated and not np.all(np.isfinite(axis)):
+        principal_axis = np.full(3, np.nan)
     centre = np.array(centre, float)
     camera_position = np.array(camera_position, float)
     return ObjectEstimate(

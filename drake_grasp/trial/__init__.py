@@ -16,7 +16,7 @@ demo, the studies, the tests). One concept per module:
 """
 
 from drake_grasp.control.arm_motion import UNREACHABLE
-from drake_grasp.primitives.estimate import OBJECT_NOT_FOUND
+from drake_grasp.primitives.estimate import OBJECT_NOT_FOUND, PERCEPTION_FAILED
 from drake_grasp.success import DROPPED_DURING_LIFT, MISSED, SLIPPED_DURING_HOLD
 from drake_grasp.trial.compliant import run_compliant_trial
 from drake_grasp.trial.eigengrasp import plan_reachable_grasp, reachable_grasps, run_eigengrasp_trial
@@ -26,8 +26,8 @@ from drake_grasp.trial.record import FAILURES, SIMULATION_ERROR, TrialRecord
 from drake_grasp.trial.spec import METHODS, PlannerSettings, TrialSpec
 
 __all__ = [
-    "DROPPED_DURING_LIFT", "FAILURES", "METHODS", "MISSED", "OBJECT_NOT_FOUND", "SIMULATION_ERROR",
-    "SLIPPED_DURING_HOLD", "UNREACHABLE", "PlanFunction", "PlannerSettings", "TrialRecord", "TrialSpec",
-    "apply_variation", "oracle_plan", "plan_reachable_grasp", "reachable_grasps", "resolve", "run",
+    "DROPPED_DURING_LIFT", "FAILURES", "METHODS", "MISSED", "OBJECT_NOT_FOUND", "PERCEPTION_FAILED",
+    "SIMULATION_ERROR", "SLIPPED_DURING_HOLD", "UNREACHABLE", "PlanFunction", "PlannerSettings", "TrialRecord",
+    "TrialSpec", "apply_variation", "oracle_plan", "plan_reachable_grasp", "reachable_grasps", "resolve", "run",
     "run_compliant_trial", "run_eigengrasp_trial", "run_trial",
 ]

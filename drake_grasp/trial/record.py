@@ -8,15 +8,17 @@ import dataclasses
 import math
 
 from drake_grasp.control.arm_motion import UNREACHABLE
-from drake_grasp.primitives.estimate import OBJECT_NOT_FOUND
+from drake_grasp.primitives.estimate import OBJECT_NOT_FOUND, PERCEPTION_FAILED
 from drake_grasp.success import DROPPED_DURING_LIFT, MISSED, SLIPPED_DURING_HOLD
 
-# Failure reasons (the record's `failure` field): those of the success test, and a simulation that
-# could not be carried out.
+# Failure reasons (the record's `failure` field; its `detail` says more): those of the success test,
+# and a simulation that could not be carried out.
 SIMULATION_ERROR = "simulation error"
-# Every failure reason, including the two that end a sequence before the grasp: the camera never saw
-# the object, and the arm cannot reach the grasp.
-FAILURES = (MISSED, DROPPED_DURING_LIFT, SLIPPED_DURING_HOLD, OBJECT_NOT_FOUND, UNREACHABLE, SIMULATION_ERROR)
+# Every failure reason, including the three that end a sequence before the grasp: the camera never saw
+# the object, the estimate of what it saw cannot place a grasp (PERCEPTION_FAILED, re-exported here
+# from primitives.estimate, where the supervisor's decision finds it), and the arm cannot reach the grasp.
+FAILURES = (MISSED, DROPPED_DURING_LIFT, SLIPPED_DURING_HOLD, OBJECT_NOT_FOUND, PERCEPTION_FAILED, UNREACHABLE,
+            SIMULATION_ERROR)
 
 
 @dataclasses.dataclass
@@ -61,7 +63,10 @@ class TrialRecord:
         return record
 
     def summary(self) -> str:
-        verdict = "SUCCESS" if self.success else f"FAILED ({self.failure})"
+        failure = self.failure
+        if failure == PERCEPTION_FAILED and self.detail:  # why it failed: it names no phase of the grasp
+            failure = f"{failure}: {self.detail}"
+        verdict = "SUCCESS" if self.success else f"FAILED ({failure})"
         slip = (f"slip {self.slip_distance * 1000:.1f} mm / {math.degrees(self.slip_angle):.1f} deg"
                 if math.isfinite(self.slip_distance) else "no hold")
         lift = f"lift {self.lift * 100:.1f} cm" if math.isfinite(self.lift) else "no lift"
