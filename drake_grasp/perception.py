@@ -42,6 +42,7 @@ from drake_grasp.primitives.camera import SilhouetteCamera
 from drake_grasp.primitives.camera_model import CameraIntrinsics
 from drake_grasp.primitives.depth import DepthPrimitive
 from drake_grasp.primitives.estimate import OBJECT_NOT_FOUND, ObjectEstimate, ObjectEstimator
+from drake_grasp.primitives.estimators import is_upright
 from drake_grasp.primitives.principal_axis import PrincipalAxisPrimitive
 from drake_grasp.primitives.resemblance import ShapeResemblancePrimitive
 from drake_grasp.primitives.scores import SHAPES
@@ -166,7 +167,8 @@ def AddVisualPrimitives(builder: DiagramBuilder, station: Station, config: Perce
 
     estimator = builder.AddNamedSystem("object_estimator", ObjectEstimator())
     for source, port, target in ((camera, "camera_sample", "camera_sample"), (depth, "centre", "centre"),
-                                 (depth, "extents", "extents"), (axis, "axis", "axis"),
+                                 (depth, "extents", "extents"), (depth, "extents_frame", "extents_frame"),
+                                 (axis, "axis", "axis"),
                                  (axis, "axis_info", "axis_info"), (resemblance["box"], "evidence", "evidence")):
         builder.Connect(source.GetOutputPort(port), estimator.GetInputPort(target))
     for shape in SHAPES:
@@ -383,8 +385,9 @@ def object_extent(spec: ObjectSpec, X_WO: RigidTransform, u_W: np.ndarray) -> fl
 @dataclasses.dataclass
 class GroundTruth:
     """The object as it really is (world frame): centre of mass, principal axis (or None), extents
-    (length, width, height: along the principal axis or the longer side of the smallest horizontal
-    bounding rectangle, across it, and vertically), and the closest primitive shape."""
+    (length, width, height: along the principal axis or, for an object with none or an upright one,
+    the longer side of the smallest horizontal bounding rectangle; across it; and vertically), and the
+    closest primitive shape."""
 
     centre: np.ndarray
     principal_axis: np.ndarray | None
@@ -398,6 +401,8 @@ def ground_truth(spec: ObjectSpec, X_WO: RigidTransform) -> GroundTruth:
     axis = None
     if spec.principal_axis is not None:
         axis = X_WO.rotation().matrix() @ np.asarray(spec.principal_axis)
+    lying = axis is not None and not is_upright(axis)  # an upright axis names no horizontal direction
+    if lying:
         horizontal = axis - axis[2] * up
         directions = [math.atan2(horizontal[1], horizontal[0])]
     else:
@@ -409,7 +414,7 @@ def ground_truth(spec: ObjectSpec, X_WO: RigidTransform) -> GroundTruth:
         lu, lv = object_extent(spec, X_WO, u), object_extent(spec, X_WO, v)
         if best is None or lu * lv < best[0] * best[1] - 1e-12:
             best = (lu, lv)
-    length, width = best if axis is not None else sorted(best, reverse=True)
+    length, width = best if lying else sorted(best, reverse=True)
     return GroundTruth(X_WO.translation().copy(), axis, np.array([length, width, height]), spec.closest_primitive)
 
 
@@ -422,7 +427,7 @@ class EstimateErrors:
         depth: relative depth error, (estimated − true distance) / true distance, from the final camera.
         axis_deg: angle between the estimated and true principal axes (None unless both exist).
         extents: relative errors of (length, width, height), sorted horizontal extents when the object
-            has no principal axis.
+            has no principal axis, or an upright one (estimated or true).
         shape_correct: the highest resemblance names the true closest primitive (None if unknown).
     """
 
@@ -449,8 +454,11 @@ def compare(estimate: ObjectEstimate, truth: GroundTruth) -> EstimateErrors:
         cosine = abs(float(np.dot(truth.principal_axis, estimate.principal_axis)))
         axis_deg = math.degrees(math.acos(min(cosine, 1.0)))
     extents = np.array(estimate.extents, float)
+    if is_upright(np.asarray(estimate.axes)[:, 0]):  # along (vertical a, b, horizontal c): as the truth's
+        extents = extents[[2, 1, 0]]                # (horizontal, horizontal, vertical)
     true_extents = np.array(truth.extents, float)
-    if truth.principal_axis is None or estimate.principal_axis is None:
+    if any(axis is None or is_upright(axis) for axis in (truth.principal_axis, estimate.principal_axis)):
+        # No horizontal axis to tell length from width (a round object, or an upright one): sorted.
         extents[:2] = sorted(extents[:2], reverse=True)
         true_extents[:2] = sorted(true_extents[:2], reverse=True)
     shape_correct = None if truth.shape is None else estimate.best_shape == truth.shape
@@ -514,7 +522,7 @@ def format_comparison(record: dict) -> list[str]:
         ("centre (m)", vector(estimate["centre"]), vector(truth["centre"]), f"{errors['centre'] * 1000:.1f} mm"),
         ("depth (m)", f"{estimate['depth']:.3f}", f"{truth['depth']:.3f}", f"{errors['depth'] * 100:+.1f} %"),
         ("principal axis", vector(estimate["principal_axis"], 2), vector(truth["principal_axis"], 2), axis_error),
-        ("size (m)", " x ".join(f"{x:.3f}" for x in estimate["extents"]),
+        ("size (m)", " x ".join(f"{x:.3f}" for x in _as_truth_extents(estimate)),
          " x ".join(f"{x:.3f}" for x in truth["extents"]),
          " ".join(f"{e * 100:+.1f}" for e in errors["extents"]) + " %"),
     ]
@@ -531,3 +539,9 @@ def format_comparison(record: dict) -> list[str]:
     if record.get("problem"):
         lines.append(f"perception failed: {record['problem']} (a trial would end here)")
     return lines
+
+
+def _as_truth_extents(estimate: dict) -> list:
+    """An estimate's extents (plain data) in the truth's order: length, width (horizontal), height."""
+    extents = list(estimate["extents"])
+    return extents[::-1] if is_upright(np.asarray(estimate["axes"])[:, 0]) else extents

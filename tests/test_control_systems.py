@@ -54,11 +54,12 @@ def _sample_vector(p_WC):
     return CameraSample(time=1.0, silhouette=None, p_WC=np.asarray(p_WC, float), R_WC=np.eye(3)).to_vector()
 
 
-def _estimator_context(phase, centre, axis_info=(0.0, 1.0, 0.0), axis=(1.0, 0.0, 0.0)):
+def _estimator_context(phase, centre, axis_info=(0.0, 1.0, 0.0), axis=(1.0, 0.0, 0.0),
+                       extents_frame=(1.0, 0.0, 0.0)):
     estimator = ObjectEstimator()
     context = estimator.CreateDefaultContext()
     values = {"phase": [float(phase)], "camera_sample": _sample_vector([0.5, 0.0, 0.5]), "centre": centre,
-              "extents": [0.1, 0.06, 0.04], "axis": axis, "axis_info": axis_info, "sphere_resemblance": [0.2],
+              "extents": [0.1, 0.06, 0.04], "extents_frame": extents_frame, "axis": axis, "axis_info": axis_info, "sphere_resemblance": [0.2],
               "cylinder_resemblance": [0.7], "box_resemblance": [0.4], "evidence": np.arange(9.0)}
     for name, value in values.items():
         estimator.GetInputPort(name).FixValue(context, np.asarray(value, float))
@@ -97,6 +98,30 @@ def test_object_estimator_reports_an_object_seen_but_never_measured():
     assert estimate.found and "principal axis did not converge" in estimate.problem()
     with pytest.raises(ValueError, match="principal axis did not converge"):
         estimate.as_grasp_estimate()
+
+
+def test_object_estimator_gives_an_upright_object_its_height_along_its_vertical_axis():
+    """The depth primitive's extents are along (extents_frame, across it, up); an upright elongated
+    object's principal axis is vertical, so its length is the vertical extent, and its horizontal axes
+    are its sides' (extents_frame). The extents here: 10 cm along extents_frame, 6 cm across, 4 cm up."""
+    tilt = 0.05  # rad from the vertical, as the axis primitive measures an upright carton
+    axis = (np.sin(tilt), 0.0, np.cos(tilt))
+    sides = (np.cos(0.5), np.sin(0.5), 0.0)  # the depth primitive's face direction, 0.5 rad from x
+    estimator, context = _estimator_context(ExplorationPhase.DONE, [0.55, 0.0, 0.1], axis_info=(1.0, 1.3, 0.0),
+                                            axis=axis, extents_frame=sides)
+    estimate = estimator.GetOutputPort("estimate").Eval(context)
+    a, b, c = estimate.axes.T
+    np.testing.assert_allclose(a, axis)
+    np.testing.assert_allclose(estimate.axes.T @ estimate.axes, np.eye(3), atol=1e-12)
+    np.testing.assert_allclose(np.cross(a, b), c, atol=1e-12)
+    assert np.dot(c, sides) > 0.998  # c: along the sides' direction (made perpendicular to a)
+    np.testing.assert_allclose(estimate.extents, [0.04, 0.06, 0.1])  # a: the vertical extent; c: 10 cm
+    np.testing.assert_allclose(estimate.principal_axis, axis)
+    assert estimate.problem() == ""
+    # A lying object (its axis within 45 degrees of the horizontal) keeps the extents as they are.
+    estimator, context = _estimator_context(ExplorationPhase.DONE, [0.55, 0.0, 0.1], axis_info=(1.0, 3.0, 0.0),
+                                            axis=(np.cos(0.7), 0.0, np.sin(0.7)))
+    np.testing.assert_allclose(estimator.GetOutputPort("estimate").Eval(context).extents, [0.1, 0.06, 0.04])
 
 
 def test_grasp_executor_runs_its_phases_on_time_without_contact(station):

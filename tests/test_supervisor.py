@@ -134,6 +134,27 @@ def test_the_whole_algorithm_grasps_the_soccer_ball_from_the_camera_alone(short_
     assert record.estimate_errors["centre"] < 0.01 and record.estimate_errors["shape_correct"]
 
 
+def test_an_upright_carton_is_explored_and_grasped(tmp_path, short_scenario):
+    """A 4 x 4 x 14.4 cm carton standing on the table: its principal axis is vertical. The estimate
+    gives it its height along that axis (the depth primitive's vertical extent), a grasp is decided
+    from it and attempted: the trial ends in the grasp's own outcome, never in a simulation error or
+    a perception failure."""
+    import trimesh
+
+    path = tmp_path / "carton.stl"
+    trimesh.creation.box((0.04, 0.04, 0.144)).export(path)
+    record = trial.run(trial.TrialSpec(str(path), "compliant", "", 1), scenario=short_scenario)
+    assert record.failure not in (trial.SIMULATION_ERROR, PERCEPTION_FAILED, OBJECT_NOT_FOUND, UNREACHABLE), \
+        record.summary()
+    assert record.chosen_grasp == record.grasp == "box" and record.contacts_after_close, record.summary()
+    estimate = record.estimate
+    assert abs(estimate["principal_axis"][2]) > 0.99
+    assert estimate["extents"][0] == pytest.approx(0.144, rel=0.1)  # along the vertical axis: the height
+    assert estimate["extents"][1] == pytest.approx(0.04, rel=0.3) and estimate["extents"][2] == pytest.approx(
+        0.04, rel=0.3)
+    assert all(abs(e) < 0.3 for e in record.estimate_errors["extents"])
+
+
 @pytest.mark.slow
 def test_the_cli_runs_a_forced_grasp_and_writes_its_record(tmp_path, capsys, short_scenario_file):
     scenario_file = short_scenario_file

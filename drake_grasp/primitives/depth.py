@@ -29,6 +29,14 @@ Estimates (outputs), two estimators of the same views:
   more equation) fitted to all of them gives the object centre, and its extents along the axis,
   across it and vertically. Older views weigh less (`forget_time`): the estimate follows an object
   that creeps or rolls on the table.
+* an upright object (a carton standing on the table: its principal axis is vertical) gives the fit
+  no horizontal direction: the axis made horizontal is only the direction of its few degrees of tilt
+  error, unrelated to the object's sides. A box model at 30-60° to the sides cannot fit them, and the
+  bounded fit leaves the width across that direction at its bound, 0 (a 10 × 3 × 15 cm box: 1e-21 m,
+  or exactly 0). Its extents are therefore fitted again in the frame of its side faces
+  (`estimators.face_direction` of the same planes), and `extents_frame` says which direction the
+  first extent is along. The centre stays that of the first fit, so the exploration itself (the
+  centre steers the arcs) is the same as before for every object.
 
 The depth is the distance from the latest camera position to the estimated centre.
 """
@@ -107,9 +115,12 @@ class DepthPrimitive(VisualPrimitive):
         V_C_desired (6): desired camera twist [ω; v] in C.
         centre (3): estimated object centre, world, m (NaN until the object has been seen).
         depth (1): distance from the latest camera position to the estimated centre, m (NaN before).
-        extents (3): the object's extents along the axis, across it horizontally, and vertically, m.
+        extents (3): the object's extents along `extents_frame`, across it horizontally, and vertically, m.
+        extents_frame (3): the horizontal unit direction (world) of the first extent: the axis made
+            horizontal, or for an upright axis the direction of the object's side faces (NaN before).
         fit_info (8): [the tangent-plane fit is in use (1/0), its rms residual (m), planes stored, and
-            the fitted support parameters (s_a, s_b, s_z, ρ, r), m (see estimators.SupportFit)].
+            the fitted support parameters (s_a, s_b, s_z, ρ, r), m (see estimators.SupportFit)], of the
+            fit in the axis's frame (the centre's; an upright object's extents come from a second fit).
     """
 
     # Layout of the internal state group (the tangent planes follow).
@@ -124,11 +135,13 @@ class DepthPrimitive(VisualPrimitive):
         self._centre = self.DeclareDiscreteState(np.full(3, np.nan))
         self._depth = self.DeclareDiscreteState(np.full(1, np.nan))
         self._extents = self.DeclareDiscreteState(np.full(3, np.nan))
+        self._extents_frame = self.DeclareDiscreteState(np.full(3, np.nan))
         self._fit_info = self.DeclareDiscreteState(np.zeros(8))
         self._internal = self.DeclareDiscreteState(np.zeros(self._PLANES + self._VIEW_SIZE * self.params.max_views))
         self.DeclareStateOutputPort("centre", self._centre)
         self.DeclareStateOutputPort("depth", self._depth)
         self.DeclareStateOutputPort("extents", self._extents)
+        self.DeclareStateOutputPort("extents_frame", self._extents_frame)
         self.DeclareStateOutputPort("fit_info", self._fit_info)
         self.DeclareCameraRateUpdate()
 
@@ -138,11 +151,12 @@ class DepthPrimitive(VisualPrimitive):
         centre = context.get_discrete_state(self._centre).get_value().copy()
         if new_sample and sample.usable:
             internal = context.get_discrete_state(self._internal).get_value().copy()
-            centre, extents, fit_info = self._Estimate(internal, sample, self._axis_port.Eval(context))
+            centre, extents, extents_frame, fit_info = self._Estimate(internal, sample, self._axis_port.Eval(context))
             SetDiscreteGroup(discrete_state, self._internal, internal)
             SetDiscreteGroup(discrete_state, self._centre, centre)
             SetDiscreteGroup(discrete_state, self._depth, [np.linalg.norm(centre - sample.p_WC)])
             SetDiscreteGroup(discrete_state, self._extents, extents)
+            SetDiscreteGroup(discrete_state, self._extents_frame, extents_frame)
             SetDiscreteGroup(discrete_state, self._fit_info, fit_info)
         s = sample.silhouette
         if s is None:
@@ -159,7 +173,8 @@ class DepthPrimitive(VisualPrimitive):
         return twist
 
     def _Estimate(self, internal: np.ndarray, sample: CameraSample, axis: np.ndarray):
-        """Adds the sample's ray and tangent planes to `internal`; returns (centre, extents, fit_info)."""
+        """Adds the sample's ray and tangent planes to `internal`; returns (centre, extents, extents_frame,
+        fit_info)."""
         p = self.params
         s = sample.silhouette
         A = internal[self._A].reshape(3, 3).copy()
@@ -201,7 +216,14 @@ class DepthPrimitive(VisualPrimitive):
                                      p.ray_prior_weight, weights)
         use_fit = internal[self._MAX_TILT] >= p.fit_min_tilt
         centre = fit.centre if use_fit else ray_centre
-        return centre, fit.extents(), np.concatenate([[float(use_fit), fit.rms, float(len(planes))], fit.parameters])
+        sizes = fit
+        if estimators.is_upright(axis):  # an upright object: its size in the frame of its sides
+            faces = estimators.face_direction(planes, weights)
+            if faces is not None:
+                sizes = estimators.fit_support(planes, faces, _UP, p.table_height, p.table_weight, ray_centre,
+                                               p.ray_prior_weight, weights)
+        return (centre, sizes.extents(), sizes.frame[0].copy(),
+                np.concatenate([[float(use_fit), fit.rms, float(len(planes))], fit.parameters]))
 
     def _ApproachSpeed(self, sample: CameraSample, centre: np.ndarray) -> float:
         """Forward speed (m/s) that brings the silhouette to the wanted size, within the height limit."""

@@ -20,6 +20,7 @@ import numpy as np
 from pydrake.common.value import AbstractValue
 from pydrake.systems.framework import Context, LeafSystem
 
+from drake_grasp.primitives.estimators import is_upright
 from drake_grasp.primitives.scores import SHAPES
 from drake_grasp.primitives.sequencer import ExplorationPhase, phase_value
 from drake_grasp.primitives.silhouette import CameraSample
@@ -44,9 +45,10 @@ class ObjectEstimate:
         principal_axis: unit vector of the object's long axis, or None if the object is not elongated
             (not finite when the object is elongated but the principal-axis primitive gave no axis).
         axes: 3×3, columns (a, b, c): a = the principal axis (or, for a round object, the direction of
-            a silhouette side), b = horizontal across it, c = a × b (up).
+            a silhouette side), b = horizontal across it, c = a × b (up for a lying object; horizontal
+            for an upright one, whose principal axis is vertical).
         extents: the object's size along a, b, c, m: the depth primitive's fit of the silhouettes'
-            tangent planes.
+            tangent planes (`extents_along_axes`).
         resemblances: {"sphere", "cylinder", "box"} → resemblance in [0, 1].
         evidence: what the resemblances rest on (variations, invariances, roundness; see scores).
         elongation: the mean eccentricity of the silhouette over the exploration.
@@ -156,16 +158,52 @@ def estimate_axes(axis: np.ndarray, elongated: bool) -> tuple[np.ndarray, np.nda
     return np.column_stack([a, b, c]), (a.copy() if elongated else None)
 
 
+def upright_axes(axis: np.ndarray, extents_frame: np.ndarray) -> np.ndarray | None:
+    """An upright object's axes (a, b, c as columns): a = its principal axis (near the vertical), c =
+    the depth primitive's `extents_frame` (the direction of its side faces) made perpendicular to a,
+    b = c × a (so that c = a × b). None if `extents_frame` is not finite or lies along a."""
+    a = np.asarray(axis, float)
+    side = np.asarray(extents_frame, float)
+    if not np.all(np.isfinite(side)):
+        return None
+    c = side - float(np.dot(side, a)) * a
+    if np.linalg.norm(c) < 1e-6:
+        return None
+    c /= np.linalg.norm(c)
+    return np.column_stack([a, np.cross(c, a), c])
+
+
+def extents_along_axes(axes: np.ndarray, axis: np.ndarray, extents: np.ndarray) -> np.ndarray:
+    """The depth primitive's extents, m, as the sizes along the estimate's axes (a, b, c).
+
+    The depth primitive fits its size model in its own frame (`estimators.fit_support`): a' = its
+    `extents_frame` (the principal axis made horizontal; for an upright object, its side faces'
+    direction), b' = up × a', and up; its extents are along (a', b', up). The estimate's axes are
+    a = the principal axis itself, b horizontal across it, c = a × b. For a lying object (a within 45°
+    of the horizontal) the two frames are the same up to the axis's tilt: a ≈ a', b = b', c ≈ up, and
+    the extents are kept as they are. For an upright one — a tall carton or bottle standing on the
+    table, its principal axis vertical — a is up and c horizontal, along a' (`upright_axes`; ∓a' when
+    the axes come from `estimate_axes`): its length is the fit's vertical extent, c's size the extent
+    along a'.
+    """
+    extents = np.array(extents, float)
+    if not np.all(np.isfinite(axis)) or not is_upright(np.asarray(axes, float)[:, 0]):
+        return extents  # a lying object, or no axis yet (the fit's frame was the silhouette's, a horizontal)
+    return extents[[2, 1, 0]]
+
+
 def gather_estimate(phase: ExplorationPhase, centre: np.ndarray, camera_position: np.ndarray, axis: np.ndarray,
-                    axis_info: np.ndarray, extents: np.ndarray, resemblances: dict, evidence: np.ndarray
-                    ) -> ObjectEstimate:
+                    axis_info: np.ndarray, extents: np.ndarray, resemblances: dict, evidence: np.ndarray,
+                    extents_frame: np.ndarray | None = None) -> ObjectEstimate:
     """The ObjectEstimate from the primitives' outputs (see `ObjectEstimator`'s ports for each).
 
     Not found: the sequencer never saw the object (or, while it explores, no centre yet).
     PERCEPTION_FAILED: the exploration is over and it saw the object, but no silhouette the depth
     primitive could use (each one cut by the image border) gave it a centre. An elongated object
     whose axis primitive gave no axis keeps a principal axis that is not finite (its axes fall back
-    to the world's), so that the supervisor does not grasp along an axis nobody measured.
+    to the world's), so that the supervisor does not grasp along an axis nobody measured. An upright
+    elongated object takes its horizontal axes from the depth primitive's `extents_frame`
+    (`upright_axes`): its sides, along which its extents were measured.
     """
     no_centre = not np.all(np.isfinite(centre))
     if phase == ExplorationPhase.NOT_FOUND or (no_centre and not phase.finished):
@@ -176,12 +214,15 @@ def gather_estimate(phase: ExplorationPhase, centre: np.ndarray, camera_position
     axes, principal_axis = estimate_axes(axis, elongated)
     if elongated and not np.all(np.isfinite(axis)):
         principal_axis = np.full(3, np.nan)
+    elif elongated and extents_frame is not None and is_upright(axes[:, 0]):
+        sides = upright_axes(axes[:, 0], extents_frame)
+        axes = axes if sides is None else sides
     centre = np.array(centre, float)
     camera_position = np.array(camera_position, float)
     return ObjectEstimate(
         status="ok", centre=centre, depth=float(np.linalg.norm(centre - camera_position)),
         camera_position=camera_position, principal_axis=principal_axis, axes=axes,
-        extents=np.array(extents, float), resemblances={s: float(resemblances[s]) for s in SHAPES},
+        extents=extents_along_axes(axes, axis, extents), resemblances={s: float(resemblances[s]) for s in SHAPES},
         evidence={n: float(v) for n, v in zip(EVIDENCE_NAMES, evidence)}, elongation=float(mean_eccentricity))
 
 
@@ -192,6 +233,7 @@ class ObjectEstimator(LeafSystem):
         phase (1): the exploration sequencer's ExplorationPhase (NOT_FOUND: no estimate).
         camera_sample (25): the latest camera sample (for the camera's position).
         centre (3), extents (3): from the depth primitive, m.
+        extents_frame (3): from the depth primitive, the horizontal direction of the first extent.
         axis (3), axis_info (3): from the principal axis primitive.
         sphere_resemblance, cylinder_resemblance, box_resemblance (1 each): in [0, 1].
         evidence (9): from the box resemblance primitive (its `evidence` output).
@@ -202,7 +244,7 @@ class ObjectEstimator(LeafSystem):
     def __init__(self):
         super().__init__()
         for name, size in (("phase", 1), ("camera_sample", CameraSample.SIZE), ("centre", 3), ("extents", 3),
-                           ("axis", 3), ("axis_info", 3)):
+                           ("extents_frame", 3), ("axis", 3), ("axis_info", 3)):
             self.DeclareVectorInputPort(name, size)
         for shape in SHAPES:
             self.DeclareVectorInputPort(f"{shape}_resemblance", 1)
@@ -216,4 +258,5 @@ class ObjectEstimator(LeafSystem):
 
         output.set_value(gather_estimate(
             phase_value(read("phase")[0]), read("centre"), read("camera_sample")[13:16], read("axis"),
-            read("axis_info"), read("extents"), {s: read(f"{s}_resemblance")[0] for s in SHAPES}, read("evidence")))
+            read("axis_info"), read("extents"), {s: read(f"{s}_resemblance")[0] for s in SHAPES}, read("evidence"),
+            read("extents_frame")))

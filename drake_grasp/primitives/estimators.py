@@ -229,3 +229,31 @@ def fit_support(planes: np.ndarray, a: np.ndarray, up: np.ndarray, table_height:
     residual = w * (X @ result.x - y)
     rms = float(np.sqrt(np.sum(residual**2) / max(np.sum(w * w), 1e-12)))
     return SupportFit(result.x[:3].copy(), result.x[3:].copy(), (a, b, up), rms)
+
+
+def is_upright(direction: np.ndarray) -> bool:
+    """Whether a direction is nearer the vertical than the horizontal (more than 45° from the table
+    plane; z is up): the principal axis of an upright object, a carton or bottle standing on the table."""
+    d = np.asarray(direction, float)
+    return bool(abs(d[2]) > math.hypot(d[0], d[1]))
+
+
+def face_direction(planes: np.ndarray, weights: np.ndarray | None = None) -> np.ndarray | None:
+    """The horizontal direction of an upright object's side faces, from its tangent planes (rows [ν, o]).
+
+    The sides of a silhouette's bounding rectangle follow the object's outline, so the tangent planes
+    of an upright box have horizontal normals along its four side faces' normals: angles θ, θ + 90°,
+    θ + 180°, θ + 270°. Their circular mean with the angles taken four times, atan2(Σ w sin 4θ, Σ w cos 4θ)/4,
+    is θ (each plane weighted by w times the length of its normal's horizontal part). Returns the
+    unit horizontal vector at θ, or None when the normals show no such direction (a round section:
+    the mean vector is shorter than 1e-9 of the weights).
+    """
+    normals = np.asarray(planes, float)[:, :3]
+    horizontal = np.hypot(normals[:, 0], normals[:, 1])
+    w = horizontal * (1.0 if weights is None else np.asarray(weights, float))
+    angles = 4.0 * np.arctan2(normals[:, 1], normals[:, 0])
+    s, c = float(np.sum(w * np.sin(angles))), float(np.sum(w * np.cos(angles)))
+    if math.hypot(s, c) <= 1e-9 * max(float(np.sum(w)), 1e-300):
+        return None
+    theta = math.atan2(s, c) / 4.0
+    return np.array([math.cos(theta), math.sin(theta), 0.0])
