@@ -49,7 +49,7 @@ from drake_grasp import arm
 from drake_grasp.contact import ContactParameters
 from drake_grasp.control.gravity_compensation import GravityCompensation
 from drake_grasp.control.hand_controller import HandController, HandControllerParams, SetHandActuatorGains
-from drake_grasp.object_model import with_mass_scale
+from drake_grasp.objects.drake_model import with_mass_scale
 from drake_grasp.objects import AddObject, ObjectSpec, resolve_object
 from drake_grasp.paths import DIAGRAMS_DIR, RegisterPackage
 from drake_grasp.perception_config import PerceptionConfig

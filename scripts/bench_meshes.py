@@ -42,7 +42,7 @@ except ModuleNotFoundError:  # Run from a checkout without installing the packag
     from drake_grasp.objects import object_from_mesh, paper_object
 from baselines.eigengrasp.planner import EigengraspPlanner
 from drake_grasp.objects import _convex_vertices
-from drake_grasp.geometry.novel import novel_object, obj_text
+from drake_grasp.objects.novel import novel_object, obj_text
 from drake_grasp.station import DEFAULT_SCENARIO_FILE, load_scenario
 from drake_grasp import trial
 

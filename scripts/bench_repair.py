@@ -14,8 +14,8 @@ scale) and handed to each candidate, a function mesh -> closed solid mesh or Non
   along open edges within Manifold's tolerance).
 * ``MeshFix``: pymeshfix.MeshFix(v, f).repair() of the welded mesh with its defaults (joincomp=False,
   remove_smallest_components=True), and ``MeshFix keep``: remove_smallest_components=False.
-* ``pipeline``: the project's own, drake_grasp.geometry.repair.closed_shells then
-  drake_grasp.geometry.solid.solid_of_shells; a solid when there is one component (a RepairError
+* ``pipeline``: the project's own, drake_grasp.objects.repair.closed_shells then
+  drake_grasp.objects.solid.solid_of_shells; a solid when there is one component (a RepairError
   or several components is a refusal).
 
 For each case and candidate it records whether a solid came back, whether it is watertight, its
@@ -52,12 +52,12 @@ import numpy as np
 import trimesh
 
 try:
-    from drake_grasp.geometry import mesh_zoo
+    from drake_grasp.objects import mesh_zoo
 except ModuleNotFoundError:  # Run from a checkout without installing the package.
     sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1]))
-    from drake_grasp.geometry import mesh_zoo
-from drake_grasp.geometry.repair import RepairError, closed_shells
-from drake_grasp.geometry.solid import solid_of_shells
+    from drake_grasp.objects import mesh_zoo
+from drake_grasp.objects.repair import RepairError, closed_shells
+from drake_grasp.objects.solid import solid_of_shells
 
 MESH_CLASSES = ("shared_faces", "hull_gaps", "overlapping", "open_caps", "holes", "non_manifold", "flipped",
                 "duplicated", "internal", "degenerate", "millimetres", "separate", "open_sheet", "gltf_binary")

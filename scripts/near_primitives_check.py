@@ -1,6 +1,6 @@
 """Shape resemblance on near-primitives: are almost-spheres, -boxes and -cylinders named right?
 
-Issue 15, item 4. Generates near-primitives (`drake_grasp.geometry.near_primitives`: ellipsoids
+Issue 15, item 4. Generates near-primitives (`drake_grasp.objects.near_primitives`: ellipsoids
 within 10 % of a sphere, rounded boxes, tapered and rounded cylinders; COUNT per class) for a
 development seed and an evaluation seed, and runs the wrist camera's exploration on each exactly as
 `drake-grasp resemble --object FILE --seed K` does (default scenario and perception), beside the

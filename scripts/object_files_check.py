@@ -2,7 +2,7 @@
 any trial end in a simulation error?
 
 The acceptance check of "real objects as users bring them": each file (mesh or model) is loaded as
-a trial would (`drake_grasp.object_check.check_object`: accepted or refused and why, the notes, the
+a trial would (`drake_grasp.objects.check.check_object`: accepted or refused and why, the notes, the
 load time first and cached), then every accepted file runs, resumable like every sweep, the oracle
 grasps named by --grasps (from the true pose) and one camera-driven trial of the algorithm (its own
 choice), default scenario, trial seed --seed. A failed grasp is an honest result; a simulation error
@@ -10,7 +10,7 @@ is not. Prints (and with --report writes) a table per file and the counts of out
 
 Run: .venv/bin/python scripts/object_files_check.py FILE_OR_DIR... [--zoo] [--grasps box,cylindrical]
      [--seed 1] [--workers 2] [--out out/files-check] [--report docs/results/object_files_check.md]
-     --zoo adds the defect zoo (drake_grasp.geometry.mesh_zoo, seed 0) to the files.
+     --zoo adds the defect zoo (drake_grasp.objects.mesh_zoo, seed 0) to the files.
 """
 
 import argparse
@@ -22,7 +22,7 @@ import warnings
 from drake_grasp.experiments.executors import LocalExecutor
 from drake_grasp.experiments.results import write_atomically
 from drake_grasp.experiments.runner import TrialSpec, run_trials
-from drake_grasp.object_check import check_object
+from drake_grasp.objects.check import check_object
 from drake_grasp.objects import ObjectError
 from drake_grasp.trial import SIMULATION_ERROR
 
@@ -38,7 +38,7 @@ def _files(arguments: list[str], zoo_dir: pathlib.Path | None) -> list[pathlib.P
         else:
             files.append(path)
     if zoo_dir is not None:
-        from drake_grasp.geometry import mesh_zoo
+        from drake_grasp.objects import mesh_zoo
 
         files += [case.path for case in mesh_zoo.generate(zoo_dir, seeds=(0,)) if case.scale == 1.0]
     return files

@@ -1,4 +1,4 @@
-"""Cleaning of convex pieces (drake_grasp.geometry.cleaning): the pure functions, and the Drake
+"""Cleaning of convex pieces (drake_grasp.objects.cleaning): the pure functions, and the Drake
 failure they prevent."""
 
 import itertools
@@ -15,7 +15,7 @@ from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder
 from scipy.spatial import ConvexHull
 
-from drake_grasp.geometry import cleaning
+from drake_grasp.objects import cleaning
 
 H = 0.02  # m: half edge of the test cube
 CUBE = np.array(list(itertools.product([-H, H], repeat=3)), float)

@@ -1,4 +1,4 @@
-"""The near-primitive generator (drake_grasp.geometry.near_primitives) and its study's pure parts."""
+"""The near-primitive generator (drake_grasp.objects.near_primitives) and its study's pure parts."""
 
 import json
 import math
@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 import trimesh
 
-from drake_grasp.geometry import near_primitives as npr
+from drake_grasp.objects import near_primitives as npr
 
 COUNT = 16  # four of each class
 
@@ -92,7 +92,7 @@ def test_perfect_meshes_have_no_departure():
 def test_every_object_rests_stably_as_generated(objects):
     """The loader's own test (else it would turn the object over, with a warning); a tapered cylinder
     rests on a side facet made horizontal, not on an end's rim."""
-    from drake_grasp.user_objects import _rests_stably_upright
+    from drake_grasp.objects.mesh_files import _rests_stably_upright
 
     for o in objects:
         m = o.mesh

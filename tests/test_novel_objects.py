@@ -1,4 +1,4 @@
-"""The novel-object generator (drake_grasp.geometry.novel) and `drake-grasp objects generate`."""
+"""The novel-object generator (drake_grasp.objects.novel) and `drake-grasp objects generate`."""
 
 import json
 
@@ -7,7 +7,7 @@ import pytest
 import trimesh
 
 from drake_grasp import cli
-from drake_grasp.geometry import novel
+from drake_grasp.objects import novel
 
 
 def test_same_seed_gives_byte_identical_files(tmp_path):

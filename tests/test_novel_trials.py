@@ -7,7 +7,7 @@ objects, every oracle grasp and the camera-driven method.
 
 import pytest
 
-from drake_grasp.geometry import novel
+from drake_grasp.objects import novel
 from drake_grasp import trial
 from drake_grasp.grasps import GraspType
 from drake_grasp.objects import object_from_mesh, pose_warnings_announced

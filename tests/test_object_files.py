@@ -1,4 +1,4 @@
-"""Real object files as users bring them: every case of the defect zoo (drake_grasp.geometry.mesh_zoo)
+"""Real object files as users bring them: every case of the defect zoo (drake_grasp.objects.mesh_zoo)
 is accepted (with its note), repaired, or refused for its stated reason; model files' inertias are
 checked; `objects check` says what it did; and a grasp on such objects ends in no simulation error."""
 
@@ -10,11 +10,11 @@ import pytest
 import trimesh
 
 from drake_grasp import cli, trial
-from drake_grasp.geometry import mesh_zoo, repair, solid
-from drake_grasp.model_files import InertiaWarning, inertia_problem
+from drake_grasp.objects import mesh_zoo, repair, solid
+from drake_grasp.objects.model_files import InertiaWarning, inertia_problem
 from drake_grasp.objects import ObjectError
 from drake_grasp.trial import SIMULATION_ERROR, TrialSpec
-from drake_grasp.user_objects import resolve_user_object
+from drake_grasp.objects.names import resolve_user_object
 
 
 @pytest.fixture(scope="module")
@@ -144,3 +144,18 @@ def test_an_articulated_mjcf_model_is_refused(tmp_path):
                     "</body></worldbody></mujoco>")
     with pytest.raises(ObjectError, match="articulated"):
         resolve_user_object(str(path))
+
+
+@pytest.mark.parametrize("old, name", [("drake_grasp.catalogue", "paper_object"),
+                                       ("drake_grasp.user_objects", "object_from_mesh"),
+                                       ("drake_grasp.object_model", "AddObject"),
+                                       ("drake_grasp.piece_budget", "budgeted_piece"),
+                                       ("drake_grasp.geometry.novel", "generate")])
+def test_the_old_import_paths_work_for_one_release_with_a_deprecation_warning(old, name):
+    import importlib
+    import sys
+
+    sys.modules.pop(old, None)
+    with pytest.warns(DeprecationWarning, match="deprecated"):
+        module = importlib.import_module(old)
+    assert callable(getattr(module, name))

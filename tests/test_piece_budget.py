@@ -5,8 +5,9 @@ import pytest
 import trimesh
 from scipy.spatial import ConvexHull
 
-from drake_grasp import objects, piece_budget
-from drake_grasp.piece_budget import hull_deviations, simplify_hull
+from drake_grasp import objects
+from drake_grasp.objects import piece_budget
+from drake_grasp.objects.piece_budget import hull_deviations, simplify_hull
 
 
 def _is_subset(rows, of):

@@ -1,4 +1,4 @@
-"""Honest physics and units for a user's mesh: the enclosed solid (drake_grasp.geometry.solid),
+"""Honest physics and units for a user's mesh: the enclosed solid (drake_grasp.objects.solid),
 separate components, --scale, the units warning, simplification, and spheres that do not tip."""
 
 import time
@@ -8,7 +8,7 @@ import pytest
 import trimesh
 
 from drake_grasp import cli, objects
-from drake_grasp.geometry import solid
+from drake_grasp.objects import solid
 
 
 def _two_boxes(offset):

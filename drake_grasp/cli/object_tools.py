@@ -25,7 +25,7 @@ def add_objects(sub) -> None:
 
 
 def _run_objects_generate(args) -> int:
-    from drake_grasp.geometry import novel
+    from drake_grasp.objects import novel
 
     check_seed(args.seed)
     if args.count < 1:
@@ -64,9 +64,9 @@ def add_objects_check(objects_sub) -> None:
 def _run_objects_check(args) -> int:
     import dataclasses
 
-    from drake_grasp import object_check
+    from drake_grasp.objects import check as object_check
     from drake_grasp.cli.common import jsonable, mesh_option_args, writable_file
-    from drake_grasp.user_objects import is_mesh_file
+    from drake_grasp.objects.names import is_mesh_file
 
     replay = writable_file(args.replay, ".html") if args.replay else None
     spec, report = object_check.check_object(args.file, **mesh_option_args(args))

@@ -159,7 +159,7 @@ def objects_arg(args, default: tuple[str, ...]) -> tuple[str, ...]:
     """--objects as a tuple (each resolved once here, with the mesh options, so that a bad one is a
     one-line error before any worker starts), or `default`. `--scale` and `--largest-component`
     apply to the mesh files among them; given with no mesh file at all, they are an error."""
-    from drake_grasp.user_objects import mesh_options, options_for, resolve_user_object
+    from drake_grasp.objects.names import mesh_options, options_for, resolve_user_object
 
     objects = tuple(default)
     if args.objects is not None:

@@ -51,7 +51,7 @@ class Fig6Config:
     def object_options(self, obj: str) -> dict:
         """The keyword arguments that resolve `obj` as this sweep does (`--scale`,
         `--largest-component` for a mesh file; none for a catalogue object or a primitive)."""
-        from drake_grasp.user_objects import mesh_options, options_for
+        from drake_grasp.objects.names import mesh_options, options_for
 
         return options_for(obj, **mesh_options(self.scale, self.largest_component, self.join_gap, self.inertia))
 

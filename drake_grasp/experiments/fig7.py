@@ -61,7 +61,7 @@ class Fig7Config:
     def object_options(self, obj: str) -> dict:
         """The keyword arguments that resolve `obj` as this comparison does (`--scale`,
         `--largest-component` for a mesh file; none for anything else)."""
-        from drake_grasp.user_objects import mesh_options, options_for
+        from drake_grasp.objects.names import mesh_options, options_for
 
         return options_for(obj, **mesh_options(self.scale, self.largest_component, self.join_gap, self.inertia))
 

@@ -53,7 +53,7 @@ def object_content(name_or_path: str, **object_kwargs) -> dict:
         ObjectError: as `objects.resolve_object` for a bad argument.
     """
     from drake_grasp.objects import _PAPER_FACTORIES, _PRIMITIVE_PATTERNS, ObjectError
-    from drake_grasp.user_objects import IMPORT_VERSION
+    from drake_grasp.objects.pieces import IMPORT_VERSION
 
     text = str(name_or_path).strip()
     content = {"argument": text, "kwargs": object_kwargs}

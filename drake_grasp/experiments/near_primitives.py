@@ -1,6 +1,6 @@
 """Shape resemblance on near-primitives (issue 15, item 4): is an almost-sphere still a sphere?
 
-For generated near-primitives (`drake_grasp.geometry.near_primitives`: ellipsoids within 10 % of a
+For generated near-primitives (`drake_grasp.objects.near_primitives`: ellipsoids within 10 % of a
 sphere, rounded boxes, tapered and rounded cylinders) and for perfect primitives, runs the wrist
 camera's exploration exactly as `drake-grasp resemble` does (the default scenario's perception, the
 object placed with the trial seed's variation, `perception.explore`), and records the three
@@ -176,7 +176,7 @@ def ensure_objects(directory: pathlib.Path, count: int, seed: int, perfect: bool
     deterministic). Files go through a private folder and are moved into place, the manifest last.
     Returns manifest rows, "file" as a path."""
     from drake_grasp.experiments.results import ensure_generated
-    from drake_grasp.geometry import near_primitives as generator
+    from drake_grasp.objects import near_primitives as generator
 
     expected = count + (len(generator.PERFECT) if perfect else 0)
     return ensure_generated(directory, lambda staging: generator.generate(count, seed, staging, perfect=perfect),
@@ -202,7 +202,7 @@ def perfect_tasks(perfect_meshes: list[dict], seeds: int = 1, scenario_file: str
 def catalogue_tasks(seeds: int = 1, scenario_file: str = "", scenario_name: str = "default") -> list[Task]:
     """The paper's nine objects, each with trial seeds 0..seeds-1 (as `drake-grasp resemble --object
     NAME --seed K`)."""
-    from drake_grasp.catalogue import PAPER_OBJECTS, paper_object
+    from drake_grasp.objects.catalogue import PAPER_OBJECTS, paper_object
 
     return [Task(name, "catalogue", "catalogue", paper_object(name).closest_primitive, seed, scenario_file,
                  scenario_name) for seed in range(seeds) for name in PAPER_OBJECTS]

@@ -159,7 +159,7 @@ def run_agrees(scored: Scored, scorer: str) -> bool | None:
 
 def accuracy_rows(scored: list[Scored], which: str = "after") -> list[tuple[str, str, int, int]]:
     """(class, primitive, right, n) per generator class, then per primitive ("all <primitive>")."""
-    from drake_grasp.geometry.near_primitives import CLASSES, PRIMITIVE_OF_CLASS
+    from drake_grasp.objects.near_primitives import CLASSES, PRIMITIVE_OF_CLASS
 
     rows = []
     for c in CLASSES:

@@ -1,7 +1,7 @@
 """Beyond the paper: the compliance-centric algorithm and the Eigengrasp planner on novel objects.
 
 The paper tests nine household objects. Here both methods meet objects neither has seen, made by
-the novel-object generator (`drake_grasp.geometry.novel`: blobs, unions of primitives, plates, L and
+the novel-object generator (`drake_grasp.objects.novel`: blobs, unions of primitives, plates, L and
 T shapes, rings and handles, 3-25 cm), through exactly the runner, seeds and success test of Fig. 6
 and Fig. 7:
 
@@ -218,7 +218,7 @@ def ensure_objects(directory: pathlib.Path, count: int, seed: int) -> list[dict]
     and no manifest that promises a missing one.
     """
     from drake_grasp.experiments.results import ensure_generated
-    from drake_grasp.geometry.novel import generate
+    from drake_grasp.objects.novel import generate
 
     return ensure_generated(directory, lambda staging: generate(count, seed, staging), count, (seed,))
 

@@ -1,2 +1,2 @@
-"""Geometry of user objects: cleaning the shapes handed to Drake, the solid a mesh encloses, and a
-generator of novel test objects."""
+"""Deprecated: the geometry of user objects moved to :mod:`drake_grasp.objects` (cleaning, solid,
+novel, near_primitives); these paths work for one release, with a DeprecationWarning."""

@@ -83,7 +83,7 @@ class TrialSpec:
     def object_options(self) -> dict:
         """The object-file options that differ from their defaults and that the object takes
         (keyword arguments)."""
-        from drake_grasp.user_objects import mesh_options, options_for
+        from drake_grasp.objects.names import mesh_options, options_for
 
         return options_for(self.object, **mesh_options(self.scale, self.largest_component, self.join_gap,
                                                        self.inertia))

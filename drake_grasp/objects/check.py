@@ -19,7 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
-from drake_grasp.objects import MeshNote, ObjectSpec, UnitsWarning, UnstablePoseWarning
+from drake_grasp.objects.spec import MeshNote, ObjectSpec, UnitsWarning, UnstablePoseWarning
 
 
 @dataclasses.dataclass
@@ -60,7 +60,7 @@ class CheckReport:
 
 
 def _load(argument: str, options: dict) -> tuple[ObjectSpec, list[warnings.WarningMessage], float]:
-    from drake_grasp.user_objects import resolve_user_object
+    from drake_grasp.objects.names import resolve_user_object
 
     start = time.perf_counter()
     with warnings.catch_warnings(record=True) as caught:
@@ -76,7 +76,7 @@ def check_object(argument: str, **options) -> tuple[ObjectSpec, CheckReport]:
     Raises:
         ObjectError: the file is refused (one line naming it and why).
     """
-    from drake_grasp.model_files import InertiaWarning
+    from drake_grasp.objects.model_files import InertiaWarning
 
     spec, caught, first = _load(argument, options)
     _, _, again = _load(argument, options)
@@ -129,7 +129,7 @@ def write_replay(spec: ObjectSpec, html_path: str | Path, visual: str | None = N
         import trimesh
 
         from drake_grasp.objects import cache_dir
-        from drake_grasp.user_objects import _read_mesh
+        from drake_grasp.objects.mesh_files import _read_mesh
 
         mesh = _read_mesh(Path(visual), visual, scale)
         mesh.apply_translation(-_centre_of_mass_offset(spec, mesh))

@@ -17,7 +17,7 @@ outward-wound shells. The steps, each counted for the one-line note a user sees:
    manifold; a patch that still encloses no volume (a sheet, a fin, an internal partition) is
    dropped, and when nothing else is left the file is refused.
 
-Why MeshFix: measured on the defect zoo (drake_grasp.geometry.mesh_zoo, scripts/bench_repair.py),
+Why MeshFix: measured on the defect zoo (drake_grasp.objects.mesh_zoo, scripts/bench_repair.py),
 trimesh.repair.fill_holes closes only holes of one or two triangles, and Manifold refuses any mesh
 that is not already a manifold; MeshFix closed every open cap and hole. See docs/results/repair.md.
 """

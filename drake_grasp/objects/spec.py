@@ -1,9 +1,8 @@
-"""Objects: their data (`ShapePiece`, `ObjectSpec`), the geometry and mass properties of their pieces,
+"""The object data model: `ShapePiece`, `ObjectSpec`, the geometry and mass properties of pieces,
 and the cache of generated meshes.
 
-Built on this module, each in its own: the paper's nine objects and Fig. 4's families (`catalogue`),
-user meshes and models and the names a command line takes (`user_objects`), and the model handed to
-Drake (`object_model`). Their names are also reachable from here (`objects.resolve_object`, ...).
+Every other module of :mod:`drake_grasp.objects` builds on this one (the package's docstring lists
+them); its names are also reachable as ``drake_grasp.objects.<name>``.
 
 Every object is an :class:`ObjectSpec`: a rigid body made of convex pieces (Drake primitives or
 convex meshes, so that contact queries are exact; docs/design.md §4.3), a mass, and the ground truth that
@@ -55,7 +54,7 @@ from pydrake.geometry import Box, Capsule, Convex, Cylinder, Ellipsoid, Shape, S
 from pydrake.math import RigidTransform, RollPitchYaw, RotationMatrix
 from pydrake.multibody.tree import CalcSpatialInertia
 
-from drake_grasp.geometry import cleaning
+from drake_grasp.objects import cleaning
 
 # --- Assumed numbers (docs/design.md §4.3: "assumed" numbers live here, named) --------------------
 
@@ -550,22 +549,3 @@ def _make_spec(
         friction=friction,
         source=source,
     )
-
-
-# --- The rest of the object API, in its own modules ------------------------------------------------
-# The catalogue (`catalogue`), user meshes and models with the command line's names (`user_objects`)
-# and the Drake model (`object_model`) build on the data above, so they import this module; their
-# names are also reachable from here, looked up on first use (PEP 562), so that
-# `from drake_grasp.objects import resolve_object` keeps working without an import cycle.
-_PARTS = ("catalogue", "user_objects", "object_model")
-
-
-def __getattr__(name: str):
-    import importlib
-
-    if not name.startswith("__"):
-        for part in _PARTS:
-            module = importlib.import_module(f"drake_grasp.{part}")
-            if name in vars(module):
-                return vars(module)[name]
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -19,7 +19,7 @@ poses, MuJoCo's defaults (``<default>`` classes), the compiler's ``meshdir``/``a
 ``angle``, mesh ``scale``, and each geom's ``mass`` or ``density`` (MuJoCo's default 1000 kg/m³)
 or the body's ``<inertial>``. Collision geoms are those MuJoCo would collide (``contype`` or
 ``conaffinity`` non-zero); if none, every geom. The geoms become one mesh in the body frame that
-goes through the same repair and joining as a mesh file (:mod:`drake_grasp.user_objects`).
+goes through the same repair and joining as a mesh file (:mod:`drake_grasp.objects.mesh_files`).
 """
 
 from __future__ import annotations
@@ -37,12 +37,11 @@ from pydrake.geometry import Box, Capsule, Convex, Cylinder, Ellipsoid, Mesh, Sh
 from pydrake.math import RigidTransform, RollPitchYaw, RotationMatrix
 from pydrake.multibody.parsing import Parser
 
-from drake_grasp.objects import (
+from drake_grasp.objects.mesh_files import _load_checked_mesh, _model_name, _one_line, object_from_triangles
+from drake_grasp.objects.pieces import IMPORT_VERSION, _decompose
+from drake_grasp.objects.spec import (
     DEFAULT_DENSITY, DEFAULT_MAX_PIECES, ObjectError, ObjectSpec, ShapePiece, YELLOW_PAPER_RGBA, _cached_hull_obj,
     _make_spec, _mass_properties_sampled, _mass_properties_summed, _piece_points,
-)
-from drake_grasp.user_objects import (
-    IMPORT_VERSION, _decompose, _load_checked_mesh, _model_name, _one_line, object_from_triangles,
 )
 
 PLAUSIBLE_DENSITY = (20.0, 20_000.0)  # kg/m³: expanded foam to tungsten
@@ -396,7 +395,7 @@ def _read_mjcf(path: Path, label: str) -> tuple[trimesh.Trimesh, float, tuple | 
         raise ObjectError(f"{label}: expected one top-level body, found {len(bodies)}")
 
     def walk(body, X_RB: np.ndarray, default_class: str):
-        nonlocal mass_from_geoms, inertial
+        nonlocal inertial
         for joint in body.findall("joint"):
             if joint.get("type", "hinge") != "free":
                 raise ObjectError(f"{label}: the object is articulated (a {joint.get('type', 'hinge')} joint); "
@@ -465,7 +464,7 @@ def object_from_mjcf(
     """An object from a MuJoCo MJCF object file (one rigid body of mesh or primitive geoms).
 
     The collision geoms become one mesh in the top body's frame, repaired and joined like a mesh
-    file's (:func:`drake_grasp.user_objects.object_from_mesh`); its mass is `mass`, else the body's
+    file's (:func:`drake_grasp.objects.mesh_files.object_from_mesh`); its mass is `mass`, else the body's
     ``<inertial>`` mass, else the geoms' (``mass``, or ``density`` × volume). The inertial, if the
     file gives one, is checked (:func:`inertia_problem`; `inertia` as in :func:`object_from_sdf`);
     without one the inertia is the collision geometry's at uniform density, as MuJoCo computes it.

@@ -1,0 +1,47 @@
+"""Objects: what a grasp is tried on, from the paper's catalogue to the files users bring.
+
+One concept per module:
+
+* `spec`: the data model (`ShapePiece`, `ObjectSpec`), piece geometry, mass properties, the cache of
+  generated meshes; the assumed numbers (density, tolerances);
+* `catalogue`: the paper's nine objects and Fig. 4's primitive families;
+* importing files: `mesh_files` (read, repaired, joined, units, resting pose), `repair` (a real mesh
+  into closed shells), `solid` (which shells are one object, and their union), `model_files`
+  (SDFormat, URDF, MJCF, with their inertias checked), `names` (what a command line names, and the
+  options object files take), `check` (`drake-grasp objects check`);
+* convex pieces for contact: `pieces` (decomposition, merging), `piece_budget` (at most 64 vertices
+  a piece), `cleaning` (no slivers, a minimum thickness);
+* the Drake model: `drake_model` (SDFormat of an ObjectSpec, AddObject, the support table);
+* generators: `novel` (novel test objects), `near_primitives`, `mesh_zoo` (defective files).
+
+The data model's names are imported here; every other public name of these modules is reachable
+as ``drake_grasp.objects.<name>`` too, looked up on first use (PEP 562), so that
+``from drake_grasp.objects import resolve_object`` works without an import cycle.
+
+Moved here (release 0.1 keeps the old paths working, with a DeprecationWarning, for one release):
+``drake_grasp.catalogue``, ``drake_grasp.user_objects`` (now `mesh_files`, `pieces`, `names`),
+``drake_grasp.object_model`` (now `drake_model`), ``drake_grasp.piece_budget`` and
+``drake_grasp.geometry.{cleaning, solid, novel, near_primitives}``.
+"""
+
+from drake_grasp.objects.spec import *  # noqa: F401,F403  (the data model: the package's core names)
+
+# Modules whose names are looked up here on first use, in this order.
+_PARTS = ("spec", "catalogue", "names", "mesh_files", "pieces", "model_files", "drake_model", "check")
+
+
+# Every module of the package (`from drake_grasp.objects import repair` imports it, as usual).
+_MODULES = _PARTS + ("cleaning", "mesh_zoo", "near_primitives", "novel", "piece_budget", "repair", "solid")
+
+
+def __getattr__(name: str):
+    import importlib
+
+    if name in _MODULES:
+        return importlib.import_module(f"{__name__}.{name}")
+    if not name.startswith("__"):
+        for part in _PARTS:
+            module = importlib.import_module(f"drake_grasp.objects.{part}")
+            if name in vars(module):
+                return vars(module)[name]
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -1,0 +1,367 @@
+"""Objects from mesh files: read, repaired into closed shells, joined into one object, in metres,
+split into convex pieces for contact and rested on a stable face.
+
+A mesh file (any format trimesh reads: OBJ, STL, PLY, OFF, glTF/GLB) is read as it stores its
+triangles (`--scale`, glTF turned z up), repaired (:mod:`drake_grasp.objects.repair`), its shells
+joined into one rigid object (:mod:`drake_grasp.objects.solid`), checked for its units, simplified if
+dense and decomposed into convex pieces (:mod:`drake_grasp.objects.pieces`); the repaired solid and
+the pieces are cached by the file's content. Mass properties come from the solid itself.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+import os
+import re
+import warnings
+from pathlib import Path
+
+import numpy as np
+import trimesh
+from pydrake.common.eigen_geometry import AngleAxis
+from pydrake.math import RollPitchYaw, RotationMatrix
+from scipy.spatial import ConvexHull, QhullError
+
+from drake_grasp.objects import repair
+from drake_grasp.objects.pieces import IMPORT_VERSION, _decompose
+from drake_grasp.objects.spec import (
+    COACD_THRESHOLD, CONVEXITY_TOLERANCE, DEFAULT_DENSITY, DEFAULT_MAX_PIECES, MAX_FACES, MeshNote,
+    ObjectError, ObjectSpec, PLAUSIBLE_EXTENTS, PRIMITIVE_NAMES, STABLE_POSE_TOLERANCE, ShapePiece,
+    UnitsWarning, UnstablePoseWarning, YELLOW_PAPER_RGBA, _make_spec, cache_dir,
+)
+
+__all__ = ["IMPORT_VERSION", "object_from_mesh", "object_from_triangles"]
+
+
+def _one_line(text: str) -> str:
+    text = " ".join(str(text).split())
+    return text if len(text) <= 200 else text[:197] + "..."
+
+
+def _model_name(text: str) -> str:
+    """`text` made a valid model name (letters, digits, '_', '-'; starting with a letter)."""
+    name = re.sub(r"[^A-Za-z0-9_\-]", "_", text) or "object"
+    return name if name[0].isalpha() else "object_" + name
+
+
+# Formats whose files are Y up (glTF 2.0 specifies +Y up, metres): turned so that their up is z.
+_Y_UP_SUFFIXES = (".gltf", ".glb")
+
+
+def _read_mesh(path: Path, label: str, scale: float) -> trimesh.Trimesh:
+    """The triangles of a mesh file as it stores them (scaled to metres, z up; nothing welded or
+    repaired yet). ObjectError for a file that is missing, unreadable, has no triangles or has
+    vertices that are not finite."""
+    if not path.exists():
+        raise ObjectError(f"{label}: file not found")
+    if not path.is_file():
+        raise ObjectError(f"{label}: not a file")
+    try:
+        mesh = trimesh.load(path, force="mesh", process=False)
+    except Exception as error:  # trimesh raises many types for unreadable files.
+        reason = _one_line(error) or type(error).__name__
+        raise ObjectError(f"{label}: cannot read mesh ({reason})") from None
+    if not isinstance(mesh, trimesh.Trimesh) or len(mesh.faces) == 0:
+        raise ObjectError(f"{label}: file contains no triangles (a point cloud or an empty mesh): no solid "
+                          "can be recovered")
+    bad = int(np.count_nonzero(~np.isfinite(mesh.vertices).all(axis=1)))
+    if bad:
+        noun = "vertex is" if bad == 1 else "vertices are"
+        raise ObjectError(f"{label}: {bad} {noun} not finite (NaN or inf)")
+    mesh = trimesh.Trimesh(np.asarray(mesh.vertices, float) * scale, np.asarray(mesh.faces, np.int64), process=False)
+    if path.suffix.lower() in _Y_UP_SUFFIXES:
+        mesh.apply_transform(trimesh.transformations.rotation_matrix(math.pi / 2, [1.0, 0.0, 0.0]))
+    extents = mesh.extents
+    if not np.min(extents) > 1e-9 * max(np.max(extents), 1e-300):
+        raise ObjectError(f"{label}: mesh has zero volume (it is flat)")
+    return mesh
+
+
+def _solid_from_mesh(mesh: trimesh.Trimesh, label: str, join_gap: float | None = None,
+                     keep_largest: bool = False) -> trimesh.Trimesh:
+    """The solid a mesh's triangles describe (metres): repaired into closed shells
+    (:mod:`drake_grasp.objects.repair`, saying what was repaired with a MeshNote) and its shells
+    joined into one object (:mod:`drake_grasp.objects.solid`). The mesh returned may hold several
+    closed parts that touch or lie within the join gap: together they are the object."""
+    try:
+        shells, report = repair.closed_shells(mesh, label)
+    except repair.RepairError as error:
+        raise ObjectError(str(error)) from None
+    if report.changed:
+        warnings.warn(f"{label}: {report.describe()}", MeshNote, stacklevel=3)
+    return _user_solid(shells, label, keep_largest, join_gap)
+
+
+def _cached_solid(mesh: trimesh.Trimesh, label: str, key: str, join_gap: float | None,
+                  keep_largest: bool) -> trimesh.Trimesh:
+    """:func:`_solid_from_mesh`, cached under `key` (a hash of the file's content and the options)
+    beside the decompositions: a second load reads the repaired, joined solid and repeats its notes.
+    A refused file is not cached (its error is computed again, and is the same)."""
+    path = cache_dir() / "solids" / f"{key}-i{IMPORT_VERSION}.npz"
+    if path.exists():
+        stored = np.load(path, allow_pickle=False)
+        for note in json.loads(str(stored["notes"])):
+            warnings.warn(f"{label}: {note}", MeshNote, stacklevel=3)
+        return trimesh.Trimesh(stored["vertices"], stored["faces"], process=False)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        solid = _solid_from_mesh(mesh, label, join_gap, keep_largest)
+    notes = []
+    for w in caught:
+        text = str(w.message)
+        if issubclass(w.category, MeshNote) and text.startswith(f"{label}: "):
+            notes.append(text[len(label) + 2:])
+        warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    staging = path.with_name(f"{path.stem}.{os.getpid()}.tmp.npz")
+    np.savez(staging, vertices=np.asarray(solid.vertices, float), faces=np.asarray(solid.faces, np.int64),
+             notes=json.dumps(notes))
+    os.replace(staging, path)  # atomic: a concurrent load sees the whole file or none
+    return solid
+
+
+def _load_checked_mesh(path: Path, label: str, scale: float, join_gap: float | None = None,
+                       keep_largest: bool = False) -> trimesh.Trimesh:
+    """:func:`_read_mesh`, then :func:`_solid_from_mesh`."""
+    return _solid_from_mesh(_read_mesh(path, label, scale), label, join_gap, keep_largest)
+
+
+def _lowest_resting_rotation(hull: trimesh.Trimesh, p_Ocm: np.ndarray) -> RotationMatrix:
+    """R_TO that rests the object on the hull face nearest its centre of mass.
+
+    That pose has the lowest centre of mass of all resting poses, hence is stable: were the centre
+    of mass's projection outside the face, tipping over its edge would lower it further.
+    """
+    down = np.array([0.0, 0.0, -1.0])
+    distances = np.einsum("ij,ij->i", hull.face_normals, hull.triangles[:, 0] - p_Ocm)
+    # Of equally near faces, prefer the one already facing down (keep the file's orientation).
+    nearest = np.flatnonzero(distances <= distances.min() * (1.0 + 1e-9) + 1e-12)
+    n_O = hull.face_normals[nearest[int(np.argmax(hull.face_normals[nearest] @ down))]]
+    axis = np.cross(n_O, down)
+    sin, cos = np.linalg.norm(axis), float(np.dot(n_O, down))
+    if sin < 1e-12:
+        return RotationMatrix() if cos > 0.0 else RotationMatrix.MakeXRotation(math.pi)
+    return RotationMatrix(AngleAxis(math.atan2(sin, cos), axis / sin))
+
+
+def _rests_stably_upright(hull: trimesh.Trimesh, p_Ocm: np.ndarray) -> bool:
+    """Whether the object rests stably with its frame's z up: on a downward hull face (not an edge
+    or a point) over which its centre of mass lies, or so that no resting pose lowers its centre of
+    mass by more than STABLE_POSE_TOLERANCE of its size (a sphere, rolling off the vertex its
+    tessellation stands on)."""
+    height = float(p_Ocm[2] - hull.vertices[:, 2].min())
+    distances = np.einsum("ij,ij->i", hull.face_normals, hull.triangles[:, 0] - p_Ocm)
+    if height - float(distances.min()) <= STABLE_POSE_TOLERANCE * float(np.max(hull.extents)):
+        return True
+    down = np.array([0.0, 0.0, -1.0])
+    z_min = float(hull.vertices[:, 2].min())
+    bottom = (hull.face_normals @ down > 1.0 - 1e-6) & (np.abs(hull.triangles[:, :, 2] - z_min).max(axis=1) < 1e-6)
+    if not np.any(bottom):
+        return False
+    polygon = np.unique(np.round(hull.triangles[bottom].reshape(-1, 3)[:, :2], 9), axis=0)
+    if len(polygon) < 3:
+        return False  # a point or an edge
+    try:
+        equations = ConvexHull(polygon).equations  # a·x + b ≤ 0 inside
+    except QhullError:  # collinear points: an edge
+        return False
+    return bool(np.all(equations[:, :2] @ p_Ocm[:2] + equations[:, 2] <= 1e-9))
+
+
+def _user_solid(shells: list[trimesh.Trimesh], label: str, keep_largest: bool,
+                join_gap: float | None = None) -> trimesh.Trimesh:
+    """The object closed shells make: those within the join gap of each other are one rigid object
+    (their union); parts farther apart are an ObjectError naming their count and smallest gap,
+    unless `keep_largest` keeps the largest (with a MeshNote)."""
+    from drake_grasp.objects.solid import solid_of_shells
+
+    solid = solid_of_shells(shells, join_gap)
+    if len(solid.components) > 1:
+        count, gap, smallest = len(solid.components), solid.gap * 1000, solid.smallest_gap * 1000
+        if not keep_largest:
+            raise ObjectError(f"{label}: {count} separate parts farther apart than the join gap ({gap:.3g} mm; the "
+                              f"smallest gap is {smallest:.1f} mm): one object must be one piece; join them with "
+                              "--join-gap or keep the largest with --largest-component")
+        warnings.warn(f"{label}: kept the largest of {count} separate parts (smallest gap {smallest:.1f} mm)",
+                      MeshNote, stacklevel=3)
+    elif len(shells) > 1:
+        warnings.warn(f"{label}: {len(shells)} closed shells within {solid.gap * 1000:.3g} mm of each other "
+                      "form one object (mass and inertia from their union)", MeshNote, stacklevel=3)
+    return solid.mesh
+
+
+def _likely_scale(extent: float) -> tuple[str, float] | None:
+    """(unit, scale) that brings a largest extent `extent` (file units) into PLAUSIBLE_EXTENTS."""
+    for unit, factor in (("millimetres", 0.001), ("centimetres", 0.01), ("inches", 0.0254)):
+        if PLAUSIBLE_EXTENTS[0] <= extent * factor <= PLAUSIBLE_EXTENTS[1]:
+            return unit, factor
+    return None
+
+
+def _warn_units(mesh: trimesh.Trimesh, label: str, scale: float) -> None:
+    """One UnitsWarning when the object's largest extent (m) is implausible for the hand."""
+    extent = float(np.max(mesh.extents))
+    if PLAUSIBLE_EXTENTS[0] <= extent <= PLAUSIBLE_EXTENTS[1]:
+        return
+    if extent > PLAUSIBLE_EXTENTS[1]:
+        guess = _likely_scale(extent / scale)
+        hint = (f"is the file in {guess[0]}? use --scale {guess[1]:g}" if guess
+                else "is the file in metres? set --scale")
+        message = f"{label}: largest extent {extent:.3g} m: {hint}"
+    else:
+        message = (f"{label}: largest extent {extent * 1000:.3g} mm, smaller than the hand can grasp: "
+                   "is the file in metres? set --scale")
+    warnings.warn(message, UnitsWarning, stacklevel=3)
+
+
+def _simplified(mesh: trimesh.Trimesh, label: str) -> trimesh.Trimesh:
+    """The mesh, or, above MAX_FACES faces, its quadric-decimation simplification (trimesh over the
+    fast-simplification library) to MAX_FACES faces, when that stays a closed solid."""
+    if len(mesh.faces) <= MAX_FACES:
+        return mesh
+    simple = mesh.simplify_quadric_decimation(face_count=MAX_FACES)
+    simple.merge_vertices()
+    if not (simple.is_watertight and simple.volume > 0.9 * mesh.volume):
+        return mesh  # Decimation broke the surface: keep the full mesh (slower, still correct).
+    return simple
+
+
+def object_from_mesh(
+    path: str | os.PathLike,
+    mass: float | None = None,
+    name: str | None = None,
+    *,
+    density: float = DEFAULT_DENSITY,
+    scale: float = 1.0,
+    max_pieces: int = DEFAULT_MAX_PIECES,
+    stable_pose: bool | None = None,
+    closest_primitive: str | None = None,
+    rgba=YELLOW_PAPER_RGBA,
+    friction: float | None = None,
+    largest_component: bool = False,
+    join_gap: float | None = None,
+) -> ObjectSpec:
+    """An object from a closed triangle mesh in any format trimesh reads (OBJ, STL, PLY, ...).
+
+    The object is the solid the mesh encloses (:mod:`drake_grasp.objects.solid`): closed shells
+    that overlap are united (mass and inertia never count an overlap twice); shells that do not
+    touch are an ObjectError naming their count, unless `largest_component` keeps the largest. A
+    largest extent outside PLAUSIBLE_EXTENTS gets a one-line UnitsWarning naming the likely unit. A
+    mesh of more than MAX_FACES faces is simplified for contact and rendering (quadric decimation,
+    trimesh with fast-simplification), saying so with a MeshNote; mass properties come from the
+    full mesh.
+
+    Checks: the file exists and loads; vertices are finite; the mesh is not flat, is watertight,
+    has consistent winding and non-zero volume. A mesh whose winding is consistently inverted
+    (negative volume) is flipped and accepted. A convex mesh (volume within CONVEXITY_TOLERANCE of
+    its hull's) becomes one convex piece (its hull); a non-convex one is split into at most
+    `max_pieces` convex pieces by CoACD (seed 0, quiet). The pieces are cached by the file's
+    content hash (and `scale` and the CoACD settings), so loading the same file again does not
+    decompose it again. Mass properties come from the mesh itself (exact for a closed mesh).
+
+    Args:
+        path: The mesh file; its units must be metres (or use `scale`).
+        mass: Mass (kg); default density × volume.
+        name: Model name; default the file's stem.
+        density: Density (kg/m³) used when `mass` is None; default DEFAULT_DENSITY (assumed).
+        scale: Uniform scale applied to the file's coordinates (e.g. 0.001 for millimetres).
+        max_pieces: Most convex pieces of a decomposition.
+        stable_pose: If False, the object rests with the file's z up (R_TO = I) on its lowest
+            point (which may not be a stable pose); if True, R_TO rests it on the hull face nearest
+            its centre of mass (its lowest, hence stable, resting pose); if None (default), the
+            file's z up when the object rests stably that way, else the stable pose (as it would
+            fall), saying so with an `UnstablePoseWarning`. O's axes are the file's either way.
+        closest_primitive: Ground truth for shape resemblance if known ('sphere', 'cylinder',
+            'box'); default None.
+        rgba: Visual colour.
+        friction: Coulomb friction of this object; None uses the scene's.
+        largest_component: Keep the largest of several separate components instead of failing.
+        join_gap: Shells whose surfaces come this close (m) are one object; default
+            :func:`drake_grasp.objects.solid.join_gap` (2 mm or 2 % of the largest extent).
+
+    Raises:
+        ObjectError: One line naming the file and the problem.
+    """
+    label = os.fspath(path)
+    path = Path(path).expanduser()
+    if closest_primitive not in (None, *PRIMITIVE_NAMES):
+        raise ObjectError(
+            f"{label}: closest_primitive must be one of {PRIMITIVE_NAMES}, "
+            f"got {closest_primitive!r}"
+        )
+    if not (scale > 0.0 and math.isfinite(scale)):
+        raise ObjectError(f"{label}: scale must be positive, got {scale!r}")
+    if join_gap is not None and not (join_gap >= 0.0 and math.isfinite(join_gap)):
+        raise ObjectError(f"{label}: join gap must be a distance >= 0 (m), got {join_gap!r}")
+    mesh = _read_mesh(path, label, scale)
+    return object_from_triangles(
+        mesh, label, path.stem, hashlib.sha256(path.read_bytes()).hexdigest(), str(path.resolve()), mass=mass,
+        name=name, density=density, scale=scale, max_pieces=max_pieces, stable_pose=stable_pose,
+        closest_primitive=closest_primitive, rgba=rgba, friction=friction, largest_component=largest_component,
+        join_gap=join_gap)
+
+
+def object_from_triangles(
+    mesh: trimesh.Trimesh,
+    label: str,
+    stem: str,
+    digest: str,
+    source: str,
+    *,
+    mass: float | None = None,
+    name: str | None = None,
+    density: float = DEFAULT_DENSITY,
+    scale: float = 1.0,
+    max_pieces: int = DEFAULT_MAX_PIECES,
+    stable_pose: bool | None = None,
+    closest_primitive: str | None = None,
+    rgba=YELLOW_PAPER_RGBA,
+    friction: float | None = None,
+    largest_component: bool = False,
+    join_gap: float | None = None,
+    inertia=None,
+) -> ObjectSpec:
+    """The object a file's triangles describe (metres, in the file's frame), as
+    :func:`object_from_mesh` makes it: `label` names the file in messages, `stem` names the model,
+    `digest` (the content's hash) keys the cached decomposition, `source` is recorded. `inertia`,
+    if given, is a function (volume, centroid, unit inertia, mass) → (mass, centroid, unit inertia)
+    that replaces the mass properties computed from the solid (a model file's checked inertial)."""
+    if len(mesh.faces) > MAX_FACES:  # Said first: what follows takes a while on such a mesh.
+        warnings.warn(f"{label}: {len(mesh.faces):,} faces; simplifying to {MAX_FACES:,} for contact and rendering",
+                      MeshNote, stacklevel=2)
+    solid_key = hashlib.sha256(f"{digest}|{scale!r}|{join_gap!r}|{largest_component}".encode()).hexdigest()[:24]
+    mesh = _cached_solid(mesh, label, solid_key, join_gap, largest_component)
+    _warn_units(mesh, label, scale)
+    settings = (f"{scale!r}|{max_pieces}|{COACD_THRESHOLD!r}|{CONVEXITY_TOLERANCE!r}|{largest_component}|{MAX_FACES}"
+                f"|{join_gap!r}")
+    key = hashlib.sha256((digest + settings).encode()).hexdigest()[:20]
+    volume = float(mesh.volume)
+    centroid = np.asarray(mesh.center_mass, float)
+    unit_inertia = np.asarray(mesh.moment_inertia, float) / float(mesh.mass)
+    contact_mesh = _simplified(mesh, label)
+    piece_paths = _decompose(contact_mesh, f"{_model_name(stem)}-{key}", max_pieces, label)
+    rpy_TO = (0.0, 0.0, 0.0)
+    if stable_pose is None and not _rests_stably_upright(contact_mesh.convex_hull, centroid):
+        warnings.warn(f"{label}: with its z up the object would tip over (it rests on an edge or a point, "
+                      "or its centre of mass is not over its base); resting it on its most stable face",
+                      UnstablePoseWarning, stacklevel=2)
+        stable_pose = True
+    if stable_pose:
+        rpy_TO = tuple(RollPitchYaw(_lowest_resting_rotation(contact_mesh.convex_hull, centroid)).vector())
+    pieces = [ShapePiece("convex", (), mesh_path=p) for p in piece_paths]
+    if inertia is not None:
+        mass, centroid, unit_inertia = inertia(volume, centroid, unit_inertia, mass)
+    return _make_spec(
+        name or _model_name(stem),
+        pieces,
+        mass,
+        density=density,
+        mass_properties=(volume, centroid, unit_inertia),
+        rpy_TO=rpy_TO,
+        closest_primitive=closest_primitive,
+        rgba=rgba,
+        friction=friction,
+        source=source,
+    )

@@ -1,0 +1,147 @@
+"""The objects a command line names: a catalogue name, a primitive string or a file, with the
+options only object files take (`--scale`, `--largest-component`, `--join-gap`, `--inertia`)."""
+
+from __future__ import annotations
+
+import math
+import os
+import re
+from pathlib import Path
+
+from drake_grasp.objects.catalogue import (
+    PAPER_OBJECTS, _PAPER_FACTORIES, cube_object, cylinder_object, paper_object, sphere_object,
+)
+from drake_grasp.objects.mesh_files import object_from_mesh
+from drake_grasp.objects.spec import ObjectError, ObjectSpec
+
+
+_NUMBER = r"([0-9]*\.?[0-9]+(?:[eE][-+]?[0-9]+)?)"
+_PRIMITIVE_PATTERNS = {
+    "sphere": re.compile(rf"sphere:{_NUMBER}"),
+    "cube": re.compile(rf"cube:{_NUMBER}"),
+    "cylinder": re.compile(rf"cylinder:{_NUMBER}(?:x{_NUMBER})?"),
+}
+_PRIMITIVE_HELP = "sphere:DIAMETER, cube:EDGE, cylinder:DIAMETER[xLENGTH] (metres)"
+
+
+def resolve_object(name_or_path: str | os.PathLike, **kw) -> ObjectSpec:
+    """The object named on a command line.
+
+    Args:
+        name_or_path: A catalogue name (``PAPER_OBJECTS``); a primitive string such as
+            ``sphere:0.12``, ``cube:0.08``, ``cylinder:0.1x0.3`` or ``cylinder:0.1`` (metres;
+            length default CYLINDER_FAMILY_LENGTH); or the path of a mesh (any format trimesh
+            reads) or an ``.sdf``/``.urdf`` model file.
+        **kw: Passed on to :func:`paper_object`, :func:`sphere_object` (etc.),
+            :func:`object_from_mesh` or :func:`object_from_sdf`.
+
+    Raises:
+        ObjectError: Unknown name (listing the valid names), bad primitive string, missing or bad
+            file.
+    """
+    if not isinstance(name_or_path, str):
+        return _object_from_file(Path(name_or_path), os.fspath(name_or_path), kw)
+    text = name_or_path.strip()
+    if not text:
+        raise ObjectError("empty object name; give a catalogue name, a primitive such as sphere:0.12, "
+                          "or a mesh file")
+    if text in _PAPER_FACTORIES:
+        return paper_object(text, **kw)
+    kind = text.split(":", 1)[0].lower() if ":" in text else None
+    if kind in _PRIMITIVE_PATTERNS:
+        match = _PRIMITIVE_PATTERNS[kind].fullmatch(text.lower())
+        if match is None:
+            raise ObjectError(f"bad primitive {text!r}; expected {_PRIMITIVE_HELP}")
+        values = [float(v) for v in match.groups() if v is not None]
+        if kind == "sphere":
+            return sphere_object(*values, **kw)
+        if kind == "cube":
+            return cube_object(*values, **kw)
+        return cylinder_object(*values, **kw)
+    path = Path(text).expanduser()
+    if path.suffix or os.sep in text or "/" in text or path.exists():
+        return _object_from_file(path, text, kw)
+    raise ObjectError(
+        f"unknown object {text!r}; valid names: {', '.join(PAPER_OBJECTS)}; or {_PRIMITIVE_HELP}; "
+        "or a mesh/SDF file path"
+    )
+
+
+def resolve_user_object(
+    name_or_path: str, *, scale: float = 1.0, largest_component: bool = False, join_gap: float | None = None,
+    inertia: str = "check", **kw
+) -> ObjectSpec:
+    """:func:`resolve_object` with the options that only object files take (a command line's
+    ``--scale``, ``--largest-component``, ``--join-gap``: mesh files, and MJCF for the join gap;
+    ``--inertia``: model files): ObjectError if one is given for an object that does not take it."""
+    text = str(name_or_path).strip()
+    given = mesh_options(scale, largest_component, join_gap, inertia)
+    if not given:
+        return resolve_object(text, **kw)
+    taken = options_for(text, **given)
+    for option in given:
+        if option not in taken:
+            flag = "--" + option.replace("_", "-")
+            kinds = ("model files (SDF, URDF, MJCF)" if option == "inertia" else
+                     "mesh files and MJCF models" if option == "join_gap" else "mesh files (OBJ, STL, PLY, glTF)")
+            raise ObjectError(f"{text}: {flag} applies to {kinds} only")
+    if not (scale > 0.0 and math.isfinite(scale)):
+        raise ObjectError(f"--scale must be positive, got {scale!r}")
+    if join_gap is not None and not (join_gap >= 0.0 and math.isfinite(join_gap)):
+        raise ObjectError(f"--join-gap must be a distance >= 0 (m), got {join_gap!r}")
+    return resolve_object(text, **taken, **kw)
+
+
+def is_mesh_file(name_or_path: str) -> bool:
+    """Whether an object argument names a mesh file (what `--scale` applies to), not a catalogue
+    object, a primitive or a model file (SDF, URDF, MJCF)."""
+    text = str(name_or_path).strip()
+    return not (text in _PAPER_FACTORIES or ":" in text or Path(text).suffix.lower() in MODEL_SUFFIXES)
+
+
+def is_model_file(name_or_path: str) -> bool:
+    """Whether an object argument names a model file (SDF, URDF, MJCF: what `--inertia` applies to)."""
+    text = str(name_or_path).strip()
+    return text not in _PAPER_FACTORIES and ":" not in text and Path(text).suffix.lower() in MODEL_SUFFIXES
+
+
+def mesh_options(scale: float = 1.0, largest_component: bool = False, join_gap: float | None = None,
+                 inertia: str = "check") -> dict:
+    """The object-file options that differ from their defaults, as keyword arguments of
+    :func:`resolve_user_object` (plain data: a sweep's tasks carry them to its workers, and a
+    record's fingerprint includes them)."""
+    options = {}
+    if scale != 1.0:
+        options["scale"] = float(scale)
+    if largest_component:
+        options["largest_component"] = True
+    if join_gap is not None:
+        options["join_gap"] = float(join_gap)
+    if inertia != "check":
+        options["inertia"] = inertia
+    return options
+
+
+def options_for(name_or_path: str, **options) -> dict:
+    """Of `options` (:func:`mesh_options`'s keywords), those the object takes: scale and
+    largest_component a mesh file, join_gap a mesh file or an MJCF model, inertia a model file."""
+    text = str(name_or_path).strip()
+    mjcf = is_model_file(text) and Path(text).suffix.lower() in (".xml", ".mjcf")
+    takes = {"scale": is_mesh_file(text), "largest_component": is_mesh_file(text) or mjcf,
+             "join_gap": is_mesh_file(text) or mjcf, "inertia": is_model_file(text)}
+    return {k: v for k, v in options.items() if takes.get(k, False)}
+
+
+MODEL_SUFFIXES = (".sdf", ".urdf", ".xml", ".mjcf")  # model files (drake_grasp.objects.model_files)
+
+
+def _object_from_file(path: Path, label: str, kw: dict) -> ObjectSpec:
+    if not path.exists():
+        raise ObjectError(f"{label}: file not found")
+    if path.suffix.lower() in MODEL_SUFFIXES:
+        from drake_grasp.objects import model_files
+
+        if path.suffix.lower() in (".sdf", ".urdf"):
+            return model_files.object_from_sdf(path, **kw)
+        return model_files.object_from_mjcf(path, **kw)
+    return object_from_mesh(path, **kw)

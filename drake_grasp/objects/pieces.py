@@ -1,0 +1,103 @@
+"""Convex pieces of a user's solid for contact: CoACD's decomposition of each closed part, thin
+pieces joined to a neighbour and pieces merged down to the budget, each kept to at most 64 of its
+vertices and cleaned for Drake's contact; written as OBJ files and cached by the content's hash.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import tempfile
+import warnings
+from pathlib import Path
+
+import numpy as np
+import trimesh
+
+from drake_grasp.objects import cleaning, piece_budget, repair
+from drake_grasp.objects.spec import (
+    COACD_THRESHOLD, CONVEXITY_TOLERANCE, MeshNote, ObjectError, _obj_text, cache_dir,
+)
+
+
+# Bump when loading a file gives other pieces or mass properties for the same bytes: it is part of
+# the decompositions' cache key and of a mesh file's fingerprint (records are computed anew).
+IMPORT_VERSION = 2
+CLEANING_VERSION = 2  # part of the cache key of decompositions: bump when cleaning changes
+
+
+def _coacd_pieces(mesh: trimesh.Trimesh, max_pieces: int) -> list[np.ndarray]:
+    """CoACD's convex pieces of a closed mesh (their vertices, m): seed 0, quiet."""
+    import coacd  # Imported here: only non-convex user meshes need it.
+
+    coacd.set_log_level("error")
+    result = coacd.run_coacd(
+        coacd.Mesh(np.asarray(mesh.vertices, float), np.asarray(mesh.faces, np.int32)),
+        threshold=COACD_THRESHOLD,
+        max_convex_hull=max_pieces,
+        seed=0,
+    )
+    return [np.asarray(vertices, float) for vertices, _ in result]
+
+
+def _decompose(mesh: trimesh.Trimesh, key: str, max_pieces: int, label: str = "mesh") -> list[str]:
+    """Convex pieces of `mesh` as OBJ files (vertices in the mesh frame), cached under `key`.
+
+    Each piece first keeps at most `piece_budget.MAX_PIECE_VERTICES` of its vertices (a hull inside
+    it, so that contact and the planner's distances stay cheap), then is cleaned for contact
+    (:func:`drake_grasp.objects.cleaning.clean_pieces`: no near-duplicate vertices, no sliver
+    triangles, none thinner than MIN_THICKNESS), removing at most VOLUME_TOLERANCE of the mesh's
+    volume (else ObjectError). Mass properties never come from the pieces: they come from the mesh.
+    """
+    key = f"{key}-{piece_budget.CACHE_TAG}-c{CLEANING_VERSION}-i{IMPORT_VERSION}"
+    directory = cache_dir() / "decomposed" / key
+    manifest = directory / "pieces.json"
+    if manifest.exists():
+        names = json.loads(manifest.read_text())["pieces"]
+        return [str((directory / name).resolve()) for name in names]
+    hull = mesh.convex_hull
+    if mesh.volume >= (1.0 - CONVEXITY_TOLERANCE) * hull.volume:
+        parts = [np.asarray(hull.vertices, float)]
+    else:
+        warnings.warn(f"{label}: non-convex: decomposing into at most {max_pieces} convex pieces (CoACD, "
+                      "seconds to minutes; cached for next time)", MeshNote, stacklevel=3)
+        parts = []
+        bodies = [mesh] if mesh.body_count == 1 and mesh.is_watertight else repair.closed_parts(mesh)
+        for body in bodies:  # the closed parts of one object (cells, hulls): each is decomposed
+            body_hull = body.convex_hull
+            if body.volume >= (1.0 - CONVEXITY_TOLERANCE) * body_hull.volume:
+                parts.append(np.asarray(body_hull.vertices, float))
+            else:
+                parts += _coacd_pieces(body, max_pieces)
+    # Pieces too thin for contact join a neighbour, and several parts' pieces are merged down to
+    # max_pieces (a merged piece is the hull of both: the added volume is bounded and said).
+    parts, added = cleaning.merge_pieces(parts, max_pieces)
+    if added > 0.01 * float(mesh.volume):
+        warnings.warn(f"{label}: convex pieces merged to {len(parts)}: their hulls add "
+                      f"{100 * added / float(mesh.volume):.1f} % to the volume for contact (not to the mass)",
+                      MeshNote, stacklevel=3)
+    parts = [(vertices, None) for vertices in parts]
+    budgeted = [piece_budget.budgeted_piece(vertices)[0] for vertices, _ in parts]
+    try:
+        clean, _ = cleaning.clean_pieces(budgeted, float(mesh.volume))
+    except cleaning.CleaningError as error:
+        raise ObjectError(f"{label}: {error}") from None
+    parts = [(piece.vertices, piece.faces) for piece in clean]
+    # Write into a private directory, then rename it into place: a concurrent process (parallel
+    # trials) either sees the complete directory or none, and the first to finish wins.
+    directory.parent.mkdir(parents=True, exist_ok=True)
+    staging = Path(tempfile.mkdtemp(dir=directory.parent, prefix=key + ".tmp"))
+    names = [f"piece_{index:03d}.obj" for index in range(len(parts))]
+    for name, (vertices, faces) in zip(names, parts):
+        (staging / name).write_text(_obj_text(vertices, faces))
+    (staging / "pieces.json").write_text(json.dumps({"pieces": names}))
+    try:
+        os.rename(staging, directory)
+    except OSError:
+        shutil.rmtree(staging, ignore_errors=True)
+        if not manifest.exists():
+            raise
+        # Another process got there first; use its pieces.
+    names = json.loads(manifest.read_text())["pieces"]
+    return [str((directory / name).resolve()) for name in names]
