@@ -10,11 +10,13 @@ is not. Prints (and with --report writes) a table per file and the counts of out
 
 Run: .venv/bin/python scripts/object_files_check.py FILE_OR_DIR... [--zoo] [--grasps box,cylindrical]
      [--seed 1] [--workers 2] [--out out/files-check] [--report docs/results/object_files_check.md]
-     --zoo adds the defect zoo (drake_grasp.objects.mesh_zoo, seed 0) to the files.
+     --zoo adds the defect zoo (drake_grasp.objects.mesh_zoo, seed 0) to the files. Run it with a fresh
+     DRAKE_GRASP_CACHE to measure first loads (a file loaded before is read from the cache).
 """
 
 import argparse
 import collections
+import json
 import pathlib
 import time
 import warnings
@@ -81,7 +83,8 @@ def main() -> int:
         outcome = "held" if str(r["success"]) in ("1", "True") else r["failure"]
         method = "oracle" if r["method"] == "oracle" else "camera"
         outcomes[(method, outcome)] += 1
-        rows_by_file[r["object"]].append(f"{method} {r['grasp'] or r.get('chosen_grasp', '')}: {outcome}"
+        grasp = r["grasp"] or json.loads(r.get("extra") or "{}").get("chosen", "")
+        rows_by_file[r["object"]].append(f"{method} {grasp}: {outcome}"
                                          + (f" ({r['detail']})" if r["failure"] == SIMULATION_ERROR else ""))
     errors = sum(n for (_, outcome), n in outcomes.items() if outcome == SIMULATION_ERROR)
     refused = sum(1 for verdict, _ in loaded.values() if verdict == "refused")
