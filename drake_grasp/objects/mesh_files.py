@@ -124,8 +124,11 @@ def _cached_solid(mesh: trimesh.Trimesh, label: str, key: str, join_gap: float |
 
 def _load_checked_mesh(path: Path, label: str, scale: float, join_gap: float | None = None,
                        keep_largest: bool = False) -> trimesh.Trimesh:
-    """:func:`_read_mesh`, then :func:`_solid_from_mesh`."""
-    return _solid_from_mesh(_read_mesh(path, label, scale), label, join_gap, keep_largest)
+    """:func:`_read_mesh`, then :func:`_solid_from_mesh`, cached by the file's content and the
+    options (a model file's mesh geometry)."""
+    digest = hashlib.sha256(path.read_bytes()).hexdigest() if path.is_file() else ""
+    key = hashlib.sha256(f"{digest}|{scale!r}|{join_gap!r}|{keep_largest}".encode()).hexdigest()[:24]
+    return _cached_solid(_read_mesh(path, label, scale), label, key, join_gap, keep_largest)
 
 
 def _lowest_resting_rotation(hull: trimesh.Trimesh, p_Ocm: np.ndarray) -> RotationMatrix:
