@@ -12,7 +12,7 @@ The classes (``CLASSES``):
 * hull sets with 0.5-2 mm gaps (a convex decomposition written as one file);
 * overlapping shells (CAD exports: a handle's shell running into a body's);
 * open caps, holes, non-manifold edges, flipped faces, duplicated faces, internal faces, degenerate
-  triangles (scans, visual meshes, hand-edited files);
+  triangles (scans, visual meshes, hand-edited files), and all of these at once in a triangle soup;
 * a millimetre file; truly separate parts, an open sheet and a point cloud (refused);
 * URDF and MJCF models with placeholder inertias, an MJCF naming an STL mesh, a glTF binary.
 
@@ -43,6 +43,7 @@ class ZooCase:
         volume: the volume (m³) of the solid the file describes, or None when it is not known
             in closed form (the loader's volume is compared with it).
         scale: the --scale the case is loaded with.
+        volume_tolerance: how far (a fraction) the loaded volume may honestly be from `volume`.
     """
 
     name: str
@@ -52,6 +53,7 @@ class ZooCase:
     reason: str = ""
     volume: float | None = None
     scale: float = 1.0
+    volume_tolerance: float = 0.02
 
 
 def _rng(seed: int, salt: str) -> np.random.Generator:
@@ -261,6 +263,34 @@ def degenerate(out: Path, seed: int) -> ZooCase:
     return ZooCase(path.stem, "degenerate", path, "repaired", "", float(mesh.volume))
 
 
+def everything(out: Path, seed: int) -> ZooCase:
+    """Several defects at once, as a real file has them: a solid stored as cells sharing faces, one
+    cell with a hole, some faces flipped and some duplicated, a degenerate triangle, a stray fin,
+    and the whole written as a triangle soup (STL) so that nothing is indexed."""
+    rng = _rng(seed, "everything")
+    base = _base_convex(rng)
+    cells = _cells(base, rng, int(rng.integers(2, 5)))
+    holed = cells[0]
+    drop = np.argsort(np.linalg.norm(holed.triangles_center - holed.triangles_center[0], axis=1))[:2]
+    cells[0] = _remove_faces(holed, drop)
+    mesh = _concatenate(cells)
+    faces = mesh.faces.copy()
+    flip = rng.random(len(faces)) < 0.2
+    faces[flip] = faces[flip][:, ::-1]
+    copy = np.flatnonzero(rng.random(len(faces)) < 0.1)
+    faces = np.vstack([faces, faces[copy], [[faces[0][0], faces[0][0], faces[0][1]]]])
+    vertices = mesh.vertices
+    a, b = vertices[faces[1][0]], vertices[faces[1][1]]
+    fin_tip = 0.5 * (a + b) + (0.5 * (a + b) - base.center_mass) * 0.2
+    vertices = np.vstack([vertices, fin_tip])
+    faces = np.vstack([faces, [[faces[1][0], faces[1][1], len(vertices) - 1]]])
+    path = _write(trimesh.Trimesh(vertices, faces, process=False), out / f"everything_{seed}.stl")
+    # Cells in a soup share vertices where they touch, so their shared faces become edges of four
+    # faces, split into patches that MeshFix closes one by one: the volume comes back within 7 % on
+    # seeds 0-7 (measured), not exactly.
+    return ZooCase(path.stem, "everything", path, "repaired", "repaired", float(base.volume), volume_tolerance=0.1)
+
+
 def millimetres(out: Path, seed: int) -> ZooCase:
     rng = _rng(seed, "millimetres")
     mesh = _base_convex(rng)
@@ -401,6 +431,7 @@ GENERATORS = {
     "duplicated": duplicated,
     "internal": internal,
     "degenerate": degenerate,
+    "everything": everything,
     "millimetres": millimetres,
     "separate": separate,
     "open_sheet": open_sheet,
