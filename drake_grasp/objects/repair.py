@@ -75,6 +75,8 @@ class RepairReport:
     dropped_faces: int = 0  # faces of sheets that enclose no volume
     volume_before: float = float("nan")  # of the repaired patches as given (divergence theorem)
     volume_after: float = float("nan")
+    area_added: float = 0.0  # m²: surface MeshFix added to close the open patches
+    area_closed: float = 0.0  # m²: the closed patches' whole surface
 
     @property
     def changed(self) -> bool:
@@ -98,9 +100,12 @@ class RepairReport:
         if not parts:
             return ""
         text = "repaired: " + ", ".join(parts)
+        if self.open_edges and self.area_closed > 0:
+            text += (f"; the closing added {100 * self.area_added / self.area_closed:.1f} % of their surface "
+                     "(a large share means a guessed shape: check it with --replay)")
         if self.open_edges and np.isfinite(self.volume_before) and self.volume_before > 0:
             change = 100.0 * (self.volume_after - self.volume_before) / self.volume_before
-            text += f"; volume of the closed surfaces {change:+.1f} %"
+            text += f", volume {change:+.1f} % against the open surface's"
         return text
 
 
@@ -320,6 +325,8 @@ def _part_shells(mesh: trimesh.Trimesh, report: RepairReport, opened: list) -> l
             centred.apply_translation(-patch.vertices.mean(axis=0))
             opened[0] += abs(float(centred.volume))
             opened[1] += float(closed.volume)
+            report.area_added += max(float(closed.area) - float(patch.area), 0.0)
+            report.area_closed += float(closed.area)
             patch = closed
         elif not _encloses_volume(patch):
             report.dropped_faces += len(patch.faces)
