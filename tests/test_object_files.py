@@ -159,3 +159,11 @@ def test_the_old_import_paths_work_for_one_release_with_a_deprecation_warning(ol
     with pytest.warns(DeprecationWarning, match="deprecated"):
         module = importlib.import_module(old)
     assert callable(getattr(module, name))
+
+
+def test_the_note_of_a_joined_hull_set_gives_the_widest_gap_it_bridged(zoo):
+    (gaps,) = [c for c in zoo if c.defect == "hull_gaps"]
+    _, notes = _load(gaps)
+    (note,) = [n for n in notes if "closed shells within the join gap" in n]
+    bridged = float(note.split("gaps up to ")[1].split(" mm")[0])
+    assert 0.1 < bridged <= 2.0  # the zoo moves its cells 0.25-1 mm apart each

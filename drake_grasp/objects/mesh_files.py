@@ -190,7 +190,9 @@ def _user_solid(shells: list[trimesh.Trimesh], label: str, keep_largest: bool,
         warnings.warn(f"{label}: kept the largest of {count} separate parts (smallest gap {smallest:.1f} mm)",
                       MeshNote, stacklevel=3)
     elif len(shells) > 1:
-        warnings.warn(f"{label}: {len(shells)} closed shells within {solid.gap * 1000:.3g} mm of each other "
+        bridged = (f"gaps up to {solid.largest_bridged_gap * 1000:.2f} mm bridged" if solid.largest_bridged_gap > 1e-5
+                   else "they touch or overlap")
+        warnings.warn(f"{label}: {len(shells)} closed shells within the join gap ({solid.gap * 1000:.3g} mm; {bridged}) "
                       "form one object (mass and inertia from their union)", MeshNote, stacklevel=3)
     return solid.mesh
 

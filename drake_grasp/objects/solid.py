@@ -52,13 +52,15 @@ class Component:
 
 @dataclasses.dataclass(frozen=True)
 class Solid:
-    """The objects a set of shells makes (largest volume first), the join gap (m) used, and the
-    smallest gap (m) between two components (inf for one)."""
+    """The objects a set of shells makes (largest volume first), the join gap (m) used, the
+    smallest gap (m) between two components (inf for one) and the largest gap (m) the join
+    bridged (0 when the joined shells touch or overlap)."""
 
     components: tuple[Component, ...]
     shells: int
     gap: float
     smallest_gap: float
+    largest_bridged_gap: float = 0.0  # m: the widest gap between two shells that were joined
 
     @property
     def mesh(self) -> trimesh.Trimesh:
@@ -132,22 +134,19 @@ class _Voxels:
             self._around = np.unique(self._encode((self.cells[:, None, :] + _NEIGHBOURS).reshape(-1, 3)))
         return self._around
 
-    def near(self, other: "_Voxels", gap: float) -> bool:
-        """Whether any point of this shell lies within `gap` of a point of `other`."""
+    def distance(self, other: "_Voxels", gap: float) -> float:
+        """The smallest distance (m) from a point of this shell to a point of `other`, if within
+        `gap`; inf otherwise (only the points in cubes next to `other`'s are searched)."""
         shared = np.intersect1d(self.unique, other.around, assume_unique=True)
         if len(shared) == 0:
-            return False
+            return float("inf")
         left = np.searchsorted(self.sorted_codes, shared, side="left")
         right = np.searchsorted(self.sorted_codes, shared, side="right")
         lengths = right - left
         starts = np.repeat(left - np.concatenate([[0], np.cumsum(lengths)[:-1]]), lengths)
         candidates = self.points[self.order[starts + np.arange(lengths.sum())]]
-        for start in range(0, len(candidates), 2048):  # stop at the first point found near
-            distances, _ = other.tree.query(candidates[start:start + 2048], k=1,
-                                            distance_upper_bound=gap * (1 + 1e-9))
-            if np.isfinite(distances).any():
-                return True
-        return False
+        distances, _ = other.tree.query(candidates, k=1, distance_upper_bound=gap * (1 + 1e-9))
+        return float(distances.min()) if len(distances) else float("inf")
 
 
 def _to_manifold(mesh: trimesh.Trimesh):
@@ -194,7 +193,7 @@ def solid_of_shells(shells: list[trimesh.Trimesh], gap: float | None = None) -> 
     gap = join_gap(extent, gap)
     n = len(shells)
     if n == 1:
-        return Solid((Component((0,), shells[0], float(shells[0].volume)),), 1, gap, float("inf"))
+        return Solid((Component((0,), shells[0], float(shells[0].volume)),), 1, gap, float("inf"), 0.0)
     area = sum(float(s.area) for s in shells)
     spacing = max(gap / 4.0, np.sqrt(2.0 * area / MAX_SURFACE_SAMPLES), 1e-6 * extent)
     points = [_surface_points(s, spacing) for s in shells]
@@ -202,12 +201,15 @@ def solid_of_shells(shells: list[trimesh.Trimesh], gap: float | None = None) -> 
     voxels = [_Voxels(p, origin, gap) for p in points]
     boxes = np.array([s.bounds for s in shells])
     edges = set()
+    bridged = 0.0
     for i in range(n):
         for j in range(i + 1, n):
             if np.any(boxes[i][0] > boxes[j][1] + gap) or np.any(boxes[j][0] > boxes[i][1] + gap):
                 continue  # their bounding boxes are farther apart than the gap
-            if voxels[i].near(voxels[j], gap):
+            distance = voxels[i].distance(voxels[j], gap)
+            if np.isfinite(distance):
                 edges.add((i, j))
+                bridged = max(bridged, distance)
     # A shell wholly inside another (a visual mesh's inner detail) is part of it too.
     for i in range(n):
         for j in range(n):
@@ -237,4 +239,4 @@ def solid_of_shells(shells: list[trimesh.Trimesh], gap: float | None = None) -> 
             others = others[:: max(1, len(others) // GAP_SAMPLES)]
             distances, _ = cKDTree(others).query(mine, k=1)
             smallest = min(smallest, float(distances.min()))
-    return Solid(tuple(components), n, gap, smallest)
+    return Solid(tuple(components), n, gap, smallest, bridged)
