@@ -40,16 +40,13 @@ from pydrake.multibody.parsing import Parser
 from drake_grasp.objects.mesh_files import _load_checked_mesh, _model_name, _one_line, object_from_triangles
 from drake_grasp.objects.pieces import IMPORT_VERSION, _decompose
 from drake_grasp.objects.spec import (
-    DEFAULT_DENSITY, DEFAULT_MAX_PIECES, ObjectError, ObjectSpec, ShapePiece, YELLOW_PAPER_RGBA, _cached_hull_obj,
+    DEFAULT_DENSITY, DEFAULT_MAX_PIECES, InertiaWarning, ObjectError, ObjectSpec, ShapePiece, YELLOW_PAPER_RGBA,
+    _cached_hull_obj,
     _make_spec, _mass_properties_sampled, _mass_properties_summed, _piece_points,
 )
 
 PLAUSIBLE_DENSITY = (20.0, 20_000.0)  # kg/m³: expanded foam to tungsten
 INERTIA_CHOICES = ("check", "file", "geometry")
-
-
-class InertiaWarning(UserWarning):
-    """A model file's inertia was implausible and was replaced by the collision geometry's."""
 
 
 # --- Inertia checks (pure) --------------------------------------------------------------------------

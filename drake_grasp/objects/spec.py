@@ -107,6 +107,10 @@ class MeshNote(UserWarning):
     """A one-line note on what was done to a user's mesh (simplified, decomposed: slow steps)."""
 
 
+class InertiaWarning(UserWarning):
+    """A model file's inertia was implausible and was replaced by the collision geometry's."""
+
+
 class UnstablePoseWarning(UserWarning):
     """A mesh given with its z up would tip over on the table, so it is rested on a stable face."""
 
@@ -119,6 +123,7 @@ def pose_warnings_announced():
         warnings.simplefilter("ignore", UnstablePoseWarning)
         warnings.simplefilter("ignore", UnitsWarning)
         warnings.simplefilter("ignore", MeshNote)
+        warnings.simplefilter("ignore", InertiaWarning)
         yield
 
 
