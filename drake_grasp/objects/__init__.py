@@ -2,8 +2,9 @@
 
 One concept per module:
 
-* `spec`: the data model (`ShapePiece`, `ObjectSpec`), piece geometry, mass properties, the cache of
-  generated meshes; the assumed numbers (density, tolerances);
+* `spec`: the data model (`ShapePiece`, `ObjectSpec`), the cache of generated meshes, the assumed
+  numbers (density, tolerances); `mass_properties`: the pieces' geometry and mass properties, and
+  an ObjectSpec built from them;
 * `catalogue`: the paper's nine objects and Fig. 4's primitive families;
 * importing files: `mesh_files` (read, repaired, joined, units, resting pose), `repair` (a real mesh
   into closed shells), `solid` (which shells are one object, and their union), `model_files`
@@ -27,7 +28,7 @@ Moved here (release 0.1 keeps the old paths working, with a DeprecationWarning, 
 from drake_grasp.objects.spec import *  # noqa: F401,F403  (the data model: the package's core names)
 
 # Modules whose names are looked up here on first use, in this order.
-_PARTS = ("spec", "catalogue", "names", "mesh_files", "pieces", "model_files", "drake_model", "check")
+_PARTS = ("spec", "mass_properties", "catalogue", "names", "mesh_files", "pieces", "model_files", "drake_model", "check")
 
 
 # Every module of the package (`from drake_grasp.objects import repair` imports it, as usual).

@@ -16,8 +16,9 @@ from typing import Callable
 import numpy as np
 from drake_grasp.objects.spec import (
     CYLINDER_FAMILY_LENGTH, DEFAULT_DENSITY, ObjectError, ObjectSpec, ShapePiece, YELLOW_PAPER_RGBA,
-    _cached_hull_obj, _make_spec,
+    _cached_hull_obj,
 )
+from drake_grasp.objects.mass_properties import _make_spec
 
 
 # --- The paper's nine objects (docs/design.md §4.3) ----------------------------------------------

@@ -13,7 +13,8 @@ from pydrake.math import RigidTransform, RollPitchYaw, RotationMatrix
 from pydrake.multibody.parsing import Parser
 
 from drake_grasp.contact import ContactParameters, compliant_proximity_sdf
-from drake_grasp.objects.spec import ObjectSpec, ShapePiece, _pose
+from drake_grasp.objects.mass_properties import _pose
+from drake_grasp.objects.spec import ObjectSpec, ShapePiece
 
 
 # --- Drake model ----------------------------------------------------------------------------------

@@ -29,8 +29,9 @@ from drake_grasp.objects.pieces import IMPORT_VERSION, _decompose
 from drake_grasp.objects.spec import (
     COACD_THRESHOLD, CONVEXITY_TOLERANCE, DEFAULT_DENSITY, DEFAULT_MAX_PIECES, MAX_FACES, MeshNote,
     ObjectError, ObjectSpec, PLAUSIBLE_EXTENTS, PRIMITIVE_NAMES, STABLE_POSE_TOLERANCE, ShapePiece,
-    UnitsWarning, UnstablePoseWarning, YELLOW_PAPER_RGBA, _make_spec, cache_dir,
+    UnitsWarning, UnstablePoseWarning, YELLOW_PAPER_RGBA, cache_dir,
 )
+from drake_grasp.objects.mass_properties import _make_spec
 
 __all__ = ["IMPORT_VERSION", "object_from_mesh", "object_from_triangles"]
 

@@ -42,6 +42,8 @@ from drake_grasp.objects.pieces import IMPORT_VERSION, _decompose
 from drake_grasp.objects.spec import (
     DEFAULT_DENSITY, DEFAULT_MAX_PIECES, InertiaWarning, ObjectError, ObjectSpec, ShapePiece, YELLOW_PAPER_RGBA,
     _cached_hull_obj,
+)
+from drake_grasp.objects.mass_properties import (
     _make_spec, _mass_properties_sampled, _mass_properties_summed, _piece_points,
 )
 
