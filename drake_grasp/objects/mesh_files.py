@@ -192,9 +192,11 @@ def _user_solid(shells: list[trimesh.Trimesh], label: str, keep_largest: bool,
                       MeshNote, stacklevel=3)
     elif len(shells) > 1:
         bridged = (f"gaps up to {solid.largest_bridged_gap * 1000:.2f} mm bridged" if solid.largest_bridged_gap > 1e-5
-                   else "they touch or overlap")
+                   else "they touch, overlap or nest")
+        hollow = (f"; {solid.cavities} inner shell{'s' if solid.cavities != 1 else ''} wound inward: "
+                  "a cavity, subtracted" if solid.cavities else "")
         warnings.warn(f"{label}: {len(shells)} closed shells within the join gap ({solid.gap * 1000:.3g} mm; {bridged}) "
-                      "form one object (mass and inertia from their union)", MeshNote, stacklevel=3)
+                      f"form one object (mass and inertia from their union{hollow})", MeshNote, stacklevel=3)
     return solid.mesh
 
 

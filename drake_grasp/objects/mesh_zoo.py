@@ -9,6 +9,7 @@ tests load every case; scripts/bench_repair.py measures repair libraries on the 
 The classes (``CLASSES``):
 
 * cells sharing faces (a solid stored as closed convex cells, as fracture and voxel tools write it);
+* a hollow object (an inner wall wound inward);
 * hull sets with 0.5-2 mm gaps (a convex decomposition written as one file);
 * overlapping shells (CAD exports: a handle's shell running into a body's);
 * open caps, holes, non-manifold edges, flipped faces, duplicated faces, internal faces, degenerate
@@ -210,6 +211,22 @@ def non_manifold(out: Path, seed: int) -> ZooCase:
     faces = np.vstack([mesh.faces, [[edge[0], edge[1], len(vertices) - 1]]])
     path = _write(trimesh.Trimesh(vertices, faces, process=False), out / f"non_manifold_{seed}.obj")
     return ZooCase(path.stem, "non_manifold", path, "repaired", "", 2 * size**3)
+
+
+def hollow(out: Path, seed: int) -> ZooCase:
+    """A hollow object as CAD writes it: an outer shell wound outward and an inner wall wound inward
+    (2-10 mm of material); its solid is the shell between them."""
+    rng = _rng(seed, "hollow")
+    outer = _base_convex(rng)
+    wall = rng.uniform(0.002, 0.01)
+    inner = outer.copy()
+    inner.apply_translation(-outer.center_mass)
+    inner.apply_scale(1.0 - 2.0 * wall / float(np.min(outer.extents)))
+    inner.apply_translation(outer.center_mass)
+    volume = float(outer.volume - inner.volume)
+    inner.invert()
+    path = _write(_concatenate([outer, inner]), out / f"hollow_{seed}.obj")
+    return ZooCase(path.stem, "hollow", path, "accepted", "cavity", volume)
 
 
 def flipped(out: Path, seed: int) -> ZooCase:
@@ -424,6 +441,7 @@ GENERATORS = {
     "shared_faces": shared_faces,
     "hull_gaps": hull_gaps,
     "overlapping": overlapping,
+    "hollow": hollow,
     "open_caps": open_caps,
     "holes": holes,
     "non_manifold": non_manifold,

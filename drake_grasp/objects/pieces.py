@@ -23,7 +23,7 @@ from drake_grasp.objects.spec import (
 
 # Bump when loading a file gives other pieces or mass properties for the same bytes: it is part of
 # the decompositions' cache key and of a mesh file's fingerprint (records are computed anew).
-IMPORT_VERSION = 4
+IMPORT_VERSION = 6
 CLEANING_VERSION = 2  # part of the cache key of decompositions: bump when cleaning changes
 
 
@@ -64,6 +64,8 @@ def _decompose(mesh: trimesh.Trimesh, key: str, max_pieces: int, label: str = "m
                       "seconds to minutes; cached for next time)", MeshNote, stacklevel=3)
         parts = []
         bodies = [mesh] if mesh.body_count == 1 and mesh.is_watertight else repair.closed_parts(mesh)
+        # A cavity's wall (wound inward) is out of reach from outside: contact takes the outer parts.
+        bodies = [body for body in bodies if body.volume > 0.0] or bodies
         for body in bodies:  # the closed parts of one object (cells, hulls): each is decomposed
             body_hull = body.convex_hull
             if body.volume >= (1.0 - CONVEXITY_TOLERANCE) * body_hull.volume:

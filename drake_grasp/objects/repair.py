@@ -216,6 +216,9 @@ def _outward(patch: trimesh.Trimesh, report: RepairReport) -> trimesh.Trimesh:
         flipped = ~flipped
     # Count the faces whose winding changed against the majority (the file's own convention).
     report.flipped_faces += int(min(np.count_nonzero(flipped), np.count_nonzero(~flipped)))
+    # Most of its faces had to turn: the file wound this shell inward (an inner wall of a hollow
+    # object, when it lies inside a shell wound the other way: drake_grasp.objects.solid).
+    patch.metadata["inward"] = bool(np.count_nonzero(flipped) > len(flipped) / 2)
     return patch
 
 
@@ -316,6 +319,7 @@ def _part_shells(mesh: trimesh.Trimesh, report: RepairReport, opened: list) -> l
             closed = _meshfix(patch) if len(patch.faces) >= 3 else None
             if closed is not None:
                 closed = _outward(closed, RepairReport())
+                closed.metadata["inward"] = patch.metadata.get("inward", False)
             if closed is None or not _encloses_volume(closed, float(np.max(patch.extents))):
                 report.dropped_faces += len(patch.faces)
                 continue

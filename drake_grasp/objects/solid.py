@@ -61,6 +61,7 @@ class Solid:
     gap: float
     smallest_gap: float
     largest_bridged_gap: float = 0.0  # m: the widest gap between two shells that were joined
+    cavities: int = 0  # inner shells wound inward: the walls of a hollow object's cavities
 
     @property
     def mesh(self) -> trimesh.Trimesh:
@@ -157,11 +158,12 @@ def _to_manifold(mesh: trimesh.Trimesh):
         tri_verts=np.asarray(mesh.faces, dtype=np.uint32)))
 
 
-def union(shells: list[trimesh.Trimesh]) -> trimesh.Trimesh:
-    """The boolean union of closed, outward shells (Manifold, single precision: about 1e-7 of the
-    object's size); one shell is returned as it is. A shell Manifold cannot take (not a manifold
-    after repair) is added as it is, so its volume still counts."""
-    if len(shells) == 1:
+def union(shells: list[trimesh.Trimesh], cavities: list[trimesh.Trimesh] = ()) -> trimesh.Trimesh:
+    """The boolean union of closed, outward shells, less the union of `cavities` (Manifold, single
+    precision: about 1e-7 of the object's size); one shell and no cavity is returned as it is. A
+    shell Manifold cannot take (not a manifold after repair) is added as it is, so its volume still
+    counts."""
+    if len(shells) == 1 and not cavities:
         return shells[0]
     import manifold3d
 
@@ -172,9 +174,14 @@ def union(shells: list[trimesh.Trimesh]) -> trimesh.Trimesh:
             solids.append(solid)
         else:
             rest.append(shell)
+    holes = [h for h in (_to_manifold(c) for c in cavities)
+             if h.status() == manifold3d.Error.NoError and not h.is_empty()]
     meshes = list(rest)
     if solids:
-        result = manifold3d.Manifold.batch_boolean(solids, manifold3d.OpType.Add).to_mesh()
+        result = manifold3d.Manifold.batch_boolean(solids, manifold3d.OpType.Add)
+        if holes:
+            result = result - manifold3d.Manifold.batch_boolean(holes, manifold3d.OpType.Add)
+        result = result.to_mesh()
         # process=False: Manifold keeps apart the vertices of solids that only touch; welding them
         # would make edges of four faces where the union is, in fact, two closed solids.
         meshes.insert(0, trimesh.Trimesh(np.asarray(result.vert_properties, dtype=float)[:, :3],
@@ -210,14 +217,21 @@ def solid_of_shells(shells: list[trimesh.Trimesh], gap: float | None = None) -> 
             if np.isfinite(distance):
                 edges.add((i, j))
                 bridged = max(bridged, distance)
-    # A shell wholly inside another (a visual mesh's inner detail) is part of it too.
+    # A shell wholly inside another is part of it too: a visual mesh's inner detail (united), or, when
+    # the file wound it the other way from its container, the inner wall of a hollow object (its
+    # cavity, subtracted).
+    inward = [bool(s.metadata.get("inward", False)) for s in shells]
+    cavities = set()
     for i in range(n):
         for j in range(n):
-            if i == j or (min(i, j), max(i, j)) in edges:
+            if i == j or not (np.all(boxes[i][0] >= boxes[j][0]) and np.all(boxes[i][1] <= boxes[j][1])):
                 continue
-            if np.all(boxes[i][0] >= boxes[j][0]) and np.all(boxes[i][1] <= boxes[j][1]):
-                if _winding_number(shells[j], shells[i].vertices[0]) > 0.5:
-                    edges.add((min(i, j), max(i, j)))
+            if inward[i] == inward[j] and (min(i, j), max(i, j)) in edges:
+                continue
+            if _winding_number(shells[j], shells[i].vertices[0]) > 0.5:
+                edges.add((min(i, j), max(i, j)))
+                if inward[i] != inward[j]:
+                    cavities.add(i)
     rows = [e[0] for e in edges]
     cols = [e[1] for e in edges]
     graph = coo_matrix((np.ones(len(rows)), (rows, cols)), shape=(n, n))
@@ -225,7 +239,8 @@ def solid_of_shells(shells: list[trimesh.Trimesh], gap: float | None = None) -> 
     groups = [tuple(int(i) for i in np.flatnonzero(labels == label)) for label in range(count)]
     components = []
     for group in groups:
-        mesh = union([shells[i] for i in group])
+        mesh = union([shells[i] for i in group if i not in cavities],
+                     [shells[i] for i in group if i in cavities])
         components.append(Component(group, mesh, float(mesh.volume)))
     components.sort(key=lambda c: -c.volume)
     smallest = float("inf")
@@ -239,4 +254,4 @@ def solid_of_shells(shells: list[trimesh.Trimesh], gap: float | None = None) -> 
             others = others[:: max(1, len(others) // GAP_SAMPLES)]
             distances, _ = cKDTree(others).query(mine, k=1)
             smallest = min(smallest, float(distances.min()))
-    return Solid(tuple(components), n, gap, smallest, bridged)
+    return Solid(tuple(components), n, gap, smallest, bridged, len(cavities))
