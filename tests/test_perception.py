@@ -13,7 +13,6 @@ import pytest
 from drake_grasp import cli
 from drake_grasp.objects import resolve_object
 from drake_grasp.perception import (
-    ObjectEstimate,
     compare,
     comparison_record,
     explore,
@@ -21,6 +20,7 @@ from drake_grasp.perception import (
     ground_truth,
     load_perception_config,
 )
+from drake_grasp.primitives.estimate import ObjectEstimate
 from drake_grasp.primitives.sequencer import SequencerParams
 from drake_grasp.station import load_scenario
 
@@ -149,3 +149,28 @@ def test_full_exploration_meets_the_acceptance_tolerances(name):
 def test_object_estimate_defaults_are_not_found():
     estimate = ObjectEstimate(status="object not found")
     assert not estimate.found and estimate.to_dict()["centre"] is None and math.isnan(estimate.depth)
+
+
+def test_the_algorithm_side_never_imports_the_evaluation_side():
+    """Ground truth never reaches the decision: no module of the algorithm's side (the perception
+    wiring and exploration, the visual primitives, the control systems) imports perception's
+    evaluation module, nor the package root that re-exports it."""
+    import ast
+    import pathlib
+
+    import drake_grasp
+
+    root = pathlib.Path(drake_grasp.__file__).parent
+    algorithm = [root / "perception" / "wiring.py", root / "perception" / "exploration.py",
+                 *sorted((root / "primitives").glob("*.py")), *sorted((root / "control").glob("*.py"))]
+    forbidden = {"drake_grasp.perception", "drake_grasp.perception.evaluation"}
+    for path in algorithm:
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, ast.ImportFrom):
+                names = {node.module} | {f"{node.module}.{a.name}" for a in node.names}
+            elif isinstance(node, ast.Import):
+                names = {a.name for a in node.names}
+            else:
+                continue
+            assert not (names & forbidden), f"{path.relative_to(root)} imports {names & forbidden}"
+    assert len(algorithm) > 10

@@ -13,8 +13,9 @@ from pydrake.systems.framework import DiagramBuilder
 from drake_grasp.control.supervisor import AddCompliantGraspSupervisor
 from drake_grasp.estimate_error import EstimateError
 from drake_grasp.objects import ObjectSpec
-from drake_grasp.perception import (AddExplorationSequencer, AddVisualPrimitives, compare, ground_truth,
-                                    start_camera_pose, start_configuration)
+from drake_grasp.perception.evaluation import compare, ground_truth
+from drake_grasp.perception.wiring import (AddExplorationSequencer, AddVisualPrimitives, start_camera_pose,
+                                           start_configuration)
 from drake_grasp.protocol import TrialVariation
 from drake_grasp.station import MakeStation, Scenario
 from drake_grasp.trial.execution import apply_variation, execute
