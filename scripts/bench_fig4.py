@@ -16,7 +16,7 @@ import time
 import numpy as np
 from pydrake.math import RigidTransform, RotationMatrix
 
-from drake_grasp.experiments import fig4
+from drake_grasp.studies import fig4
 from drake_grasp.hand import ComplianceMode
 from drake_grasp.objects import cube_object, cylinder_object, sphere_object
 from drake_grasp.quality import grasp_quality

@@ -27,8 +27,8 @@ import sys
 import tempfile
 import time
 
-from drake_grasp.experiments.executors import make_executor, ray_available, RAY_INSTALL_HINT
-from drake_grasp.experiments.runner import TrialSpec, run_trials
+from drake_grasp.sweeps.executors import make_executor, ray_available, RAY_INSTALL_HINT
+from drake_grasp.sweeps.runner import TrialSpec, run_trials
 
 
 def cpu_model() -> str:

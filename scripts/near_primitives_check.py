@@ -8,7 +8,7 @@ perfect primitives (Drake's sphere, cube and cylinder, and the generator's perfe
 paper's nine objects. Records go to OUT/explorations.csv as they finish (rerun to resume); the
 summary (per-class accuracy with 95 % Wilson intervals, confusion tables, the perfect and catalogue
 objects' resemblances) is written to OUT/summary.md with its figure OUT/near_primitives.png (the
-functions: `drake_grasp.experiments.near_primitives.run_study`), printed, and with --report copied
+functions: `drake_grasp.studies.near_primitives.run_study`), printed, and with --report copied
 there (the figure beside it).
 
 Run: .venv/bin/python scripts/near_primitives_check.py [--count 10] [--seed 0] [--eval-seed 1]
@@ -49,7 +49,7 @@ def _parse(argv):
     parser.add_argument("--report", help="also write the summary as Markdown here, the figure beside it (a "
                         "'## Discussion' section already in that file is kept)")
     args = parser.parse_args(argv)
-    from drake_grasp.experiments.near_primitives import StudyConfig
+    from drake_grasp.studies.near_primitives import StudyConfig
 
     config = StudyConfig(count=args.count, seed=args.seed, eval_seed=args.eval_seed,
                          reference_seeds=args.reference_seeds, catalogue=not args.skip_catalogue,
@@ -83,10 +83,10 @@ def main(argv=None) -> int:
     except UsageError as e:
         print(f"{PROG}: error: {e}", file=sys.stderr)
         return 2
-    from drake_grasp.experiments import near_primitives as study
-    from drake_grasp.experiments.executors import LocalExecutor
-    from drake_grasp.experiments.lock import LockHeld
-    from drake_grasp.experiments.results import ResultsFileError, write_atomically
+    from drake_grasp.studies import near_primitives as study
+    from drake_grasp.sweeps.executors import LocalExecutor
+    from drake_grasp.sweeps.lock import LockHeld
+    from drake_grasp.sweeps.results import ResultsFileError, write_atomically
 
     out = pathlib.Path(args.out)
     workers = min(args.workers, os.cpu_count() or 1)

@@ -17,10 +17,10 @@ import collections
 import pathlib
 import time
 
-from drake_grasp.experiments.executors import LocalExecutor
-from drake_grasp.experiments.novel import ensure_objects
-from drake_grasp.experiments.results import write_atomically
-from drake_grasp.experiments.runner import TrialSpec, run_trials
+from drake_grasp.sweeps.executors import LocalExecutor
+from drake_grasp.studies.novel import ensure_objects
+from drake_grasp.sweeps.results import write_atomically
+from drake_grasp.sweeps.runner import TrialSpec, run_trials
 from drake_grasp.trial import PERCEPTION_FAILED, SIMULATION_ERROR
 
 GRASPS = ("spherical", "cylindrical", "box")

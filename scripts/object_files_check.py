@@ -21,9 +21,9 @@ import pathlib
 import time
 import warnings
 
-from drake_grasp.experiments.executors import LocalExecutor
-from drake_grasp.experiments.results import write_atomically
-from drake_grasp.experiments.runner import TrialSpec, run_trials
+from drake_grasp.sweeps.executors import LocalExecutor
+from drake_grasp.sweeps.results import write_atomically
+from drake_grasp.sweeps.runner import TrialSpec, run_trials
 from drake_grasp.objects.check import check_object
 from drake_grasp.objects import ObjectError
 from drake_grasp.trial import SIMULATION_ERROR

@@ -9,7 +9,7 @@ Resumable (out/oracle/trials.csv); prints a success table per object and grasp.
 import argparse
 import pathlib
 
-from drake_grasp.experiments.runner import TrialSpec, run_trials
+from drake_grasp.sweeps.runner import TrialSpec, run_trials
 from drake_grasp.objects import PAPER_OBJECTS
 
 GRASPS = ("spherical", "cylindrical", "box")

@@ -27,7 +27,7 @@ GRASPS = ("spherical", "cylindrical", "box")
 
 def run_scenario(name: str, seeds: int, workers: int | None, out: pathlib.Path) -> dict:
     """The oracle set's rows in scenario `name`, by (object, grasp, seed)."""
-    from drake_grasp.experiments.runner import TrialSpec, run_trials
+    from drake_grasp.sweeps.runner import TrialSpec, run_trials
     from drake_grasp.objects import PAPER_OBJECTS
 
     specs = [TrialSpec(o, "oracle", g, s, scenario_name=name)
@@ -66,7 +66,7 @@ def quantiles(values: list[float]) -> dict:
 
 def compare(a: dict, b: dict) -> dict:
     """Paired summary of two scenarios' rows (same keys)."""
-    from drake_grasp.experiments.stats import wilson_interval
+    from drake_grasp.sweeps.stats import wilson_interval
 
     keys = sorted(set(a) & set(b))
     both = [k for k in keys if held(a[k]) and held(b[k])]
@@ -88,7 +88,7 @@ def compare(a: dict, b: dict) -> dict:
 
 
 def report(name_a: str, name_b: str, a: dict, b: dict, summary: dict) -> str:
-    from drake_grasp.experiments.stats import format_rate
+    from drake_grasp.sweeps.stats import format_rate
 
     n = summary["trials"]
     sa, sb = summary["a"], summary["b"]

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from scipy.stats import mannwhitneyu
 
-from drake_grasp.experiments.calibration import (disagreements, reliability_curve, roc_auc, roc_curve,
+from drake_grasp.studies.calibration import (disagreements, reliability_curve, roc_auc, roc_curve,
                                                  zero_and_quantile_edges)
 
 

@@ -5,9 +5,9 @@ import math
 
 import pytest
 
-from drake_grasp.experiments import capture
-from drake_grasp.experiments.executors import LocalExecutor
-from drake_grasp.experiments.runner import trial_table
+from drake_grasp.studies import capture
+from drake_grasp.sweeps.executors import LocalExecutor
+from drake_grasp.sweeps.runner import trial_table
 
 
 def test_plane_points_become_estimate_errors_in_si_units():

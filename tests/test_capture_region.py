@@ -4,7 +4,7 @@ import math
 
 import pytest
 
-from drake_grasp.experiments.capture_region import ErrorAxis, Quadtree
+from drake_grasp.studies.capture_region import ErrorAxis, Quadtree
 
 PLANE = Quadtree(ErrorAxis("across", "cm", -4.0, 4.0), ErrorAxis("yaw", "deg", -30.0, 30.0), base=4, depth=3)
 

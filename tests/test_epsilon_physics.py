@@ -3,7 +3,7 @@
 import pytest
 
 from drake_grasp.estimate_error import EstimateError
-from drake_grasp.experiments import epsilon_physics
+from drake_grasp.studies import epsilon_physics
 from drake_grasp.trial import TrialSpec
 
 

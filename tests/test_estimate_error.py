@@ -10,7 +10,7 @@ from pydrake.math import RigidTransform, RotationMatrix
 
 from drake_grasp import cli, trial
 from drake_grasp.estimate_error import EstimateError, horizontal_axes, perturb_estimate, perturb_pose
-from drake_grasp.experiments.fingerprint import trial_fingerprint
+from drake_grasp.sweeps.fingerprint import trial_fingerprint
 from drake_grasp.grasps import ObjectEstimate, oracle_estimate, plan_compliant_grasp, planned_grasp
 from drake_grasp.objects import paper_object
 from drake_grasp.trial import TrialSpec, oracle_plan

@@ -8,8 +8,9 @@ import logging
 import pytest
 
 from drake_grasp import cli
-from drake_grasp.experiments import executors, fig4
-from drake_grasp.experiments.runner import TrialSpec, run_trials
+from drake_grasp.sweeps import executors
+from drake_grasp.studies import fig4
+from drake_grasp.sweeps.runner import TrialSpec, run_trials
 
 
 def _error_line(capsys) -> str:

@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 
 from drake_grasp import cli
-from drake_grasp.experiments import fig4
-from drake_grasp.experiments.results import ResultsTable
+from drake_grasp.studies import fig4
+from drake_grasp.sweeps.results import ResultsTable
 
 
 def _small():

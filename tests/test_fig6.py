@@ -4,7 +4,7 @@ import json
 
 import pytest
 
-from drake_grasp.experiments import fig6
+from drake_grasp.studies import fig6
 
 
 def _row(obj, grasp, seed, success, sphere, cylinder, box):
@@ -42,7 +42,7 @@ def test_a_small_real_sweep_runs_resumes_and_plots(tmp_path, short_scenario_file
     # Real trials (oracle estimates, 0.5 s hold, to stay short), through the same pool and table.
     import io
 
-    from drake_grasp.experiments.runner import run_trials
+    from drake_grasp.sweeps.runner import run_trials
 
     scenario = short_scenario_file
     config = fig6.Fig6Config(objects=("sponge",), trials=1, seed=5, method="oracle")
@@ -81,7 +81,7 @@ def test_the_study_runs_on_a_users_own_objects(tmp_path, capsys, short_scenario_
 
 
 def test_plot_labels_name_mesh_files_by_their_stem():
-    from drake_grasp.experiments.results import axis_label
+    from drake_grasp.sweeps.results import axis_label
 
     assert axis_label("bottle_case") == "bottle\ncase"
     assert axis_label("/data/my_mug.stl") == "my\nmug"

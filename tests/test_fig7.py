@@ -4,7 +4,7 @@ import json
 
 import pytest
 
-from drake_grasp.experiments import fig6, fig7
+from drake_grasp.studies import fig6, fig7
 
 
 def test_compare_counts_only_this_plans_trials_and_picks_the_best_grasp(tmp_path):

@@ -134,8 +134,8 @@ def test_bad_arguments():
 
 import pathlib  # noqa: E402
 
-from drake_grasp.experiments import near_primitives as study  # noqa: E402
-from drake_grasp.experiments import near_primitives_report as analysis  # noqa: E402
+from drake_grasp.studies import near_primitives as study  # noqa: E402
+from drake_grasp.studies import near_primitives_report as analysis  # noqa: E402
 from drake_grasp.primitives import scores, sphere_tolerances  # noqa: E402
 
 
@@ -258,7 +258,7 @@ def test_one_real_exploration_names_a_near_sphere(tmp_path):
 def test_run_study_writes_summary_and_figure_and_resumes(tmp_path, monkeypatch):
     """The orchestration (objects, lock, records, summary.md, figure, resume) with the exploration
     replaced by ideal silhouettes of a sphere (no simulation)."""
-    from drake_grasp.experiments.executors import LocalExecutor
+    from drake_grasp.sweeps.executors import LocalExecutor
 
     sphere = sphere_tolerances.ideal_statistics(trimesh.creation.icosphere(2).vertices * 0.05, 0.7, 0.5, samples=7)
 

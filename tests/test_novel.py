@@ -2,9 +2,9 @@
 
 import math
 
-from drake_grasp.experiments import novel
-from drake_grasp.experiments.fig6 import GraspStats
-from drake_grasp.experiments.fig7 import Comparison
+from drake_grasp.studies import novel
+from drake_grasp.studies.fig6 import GraspStats
+from drake_grasp.studies.fig7 import Comparison
 
 
 def _stats(res, ok, n=2):

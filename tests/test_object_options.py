@@ -4,9 +4,9 @@ every record's fingerprint; they apply to mesh files only."""
 import trimesh
 
 from drake_grasp import cli
-from drake_grasp.experiments import fig6, fig7
-from drake_grasp.experiments.fingerprint import trial_fingerprint
-from drake_grasp.experiments.runner import fingerprints
+from drake_grasp.studies import fig6, fig7
+from drake_grasp.sweeps.fingerprint import trial_fingerprint
+from drake_grasp.sweeps.runner import fingerprints
 from drake_grasp.objects import is_mesh_file, mesh_options
 
 

@@ -1,6 +1,6 @@
 """The results page: the report's Markdown as HTML, figures inline, replays linked."""
 
-from drake_grasp.experiments.report_page import Replay, report_html, write_report_html
+from drake_grasp.studies.report_page import Replay, report_html, write_report_html
 
 REPORT = """# drake-grasp: the paper's claims
 

@@ -12,7 +12,7 @@ import pytest
 from matplotlib.image import imread
 
 from drake_grasp import cli
-from drake_grasp.experiments.report_page import Replay, write_report_html
+from drake_grasp.studies.report_page import Replay, write_report_html
 
 CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
 pytestmark = [pytest.mark.slow, pytest.mark.skipif(CHROMIUM is None, reason="needs Debian's chromium")]

@@ -2,7 +2,7 @@
 
 import json
 
-from drake_grasp.experiments import fig6, fig7, reproduce
+from drake_grasp.studies import fig6, fig7, reproduce
 
 
 def _stats(rates: dict[str, dict[str, float]]):
@@ -61,7 +61,7 @@ def test_report_quotes_the_scaling_benchmark_or_says_how_to_run_it(tmp_path):
 
 
 def test_study_sections_are_included_when_present_with_links_rebased(tmp_path):
-    from drake_grasp.experiments.reproduce import study_sections
+    from drake_grasp.studies.reproduce import study_sections
 
     lines = study_sections(tmp_path)
     assert len(lines) == 2 and "drake-grasp capture --out" in lines[0]  # none present: how to add them

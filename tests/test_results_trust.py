@@ -12,10 +12,11 @@ import time
 import pytest
 
 from drake_grasp import cli
-from drake_grasp.experiments import fig4, lock
-from drake_grasp.experiments.fingerprint import object_fingerprint, scenario_fingerprint, trial_fingerprint
-from drake_grasp.experiments.results import ResultsFileError, ResultsTable
-from drake_grasp.experiments.runner import TrialSpec
+from drake_grasp.studies import fig4
+from drake_grasp.sweeps import lock
+from drake_grasp.sweeps.fingerprint import object_fingerprint, scenario_fingerprint, trial_fingerprint
+from drake_grasp.sweeps.results import ResultsFileError, ResultsTable
+from drake_grasp.sweeps.runner import TrialSpec
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 
@@ -136,7 +137,7 @@ def test_a_read_only_table_skips_damage_without_touching_the_file(tmp_path):
 
 def test_a_second_writer_is_refused_naming_the_holder_and_a_dead_holders_lock_is_taken_over(tmp_path):
     holder = subprocess.Popen([sys.executable, "-c",
-                               "import sys, time; from drake_grasp.experiments.lock import acquire; "
+                               "import sys, time; from drake_grasp.sweeps.lock import acquire; "
                                f"acquire(__import__('pathlib').Path({str(tmp_path)!r})); print('held', flush=True); "
                                "time.sleep(60)"],
                               stdout=subprocess.PIPE, text=True, env=dict(os.environ, PYTHONPATH=str(ROOT)))
@@ -225,7 +226,7 @@ def test_a_read_only_out_folder_is_refused_before_the_trial(tmp_path, capsys):
 
 _SWEEP = """
 import pathlib, sys
-from drake_grasp.experiments import fig4
+from drake_grasp.studies import fig4
 config = fig4.Fig4Config(sizes=[0.05, 0.08, 0.11, 0.14, 0.17, 0.20], errors=[-0.02, 0.0, 0.02])
 fig4.run_fig4(config, pathlib.Path(sys.argv[1]), workers=2)
 """
@@ -284,7 +285,7 @@ def test_a_sweep_killed_with_sigkill_leaves_no_worker_and_a_rerun_gives_the_clea
 def test_the_reaper_ends_a_helper_that_would_outlive_a_killed_parent():
     # A helper in its own session ignores its parent's death (as Ray's agents do); the reaper ends it.
     parent = subprocess.Popen(
-        [sys.executable, "-c", "import subprocess, time; from drake_grasp.experiments import reaper; "
+        [sys.executable, "-c", "import subprocess, time; from drake_grasp.sweeps import reaper; "
          "reaper.start(); helper = subprocess.Popen(['sleep', '60'], start_new_session=True); "
          "print(helper.pid, flush=True); time.sleep(60)"],
         stdout=subprocess.PIPE, text=True, env=dict(os.environ, PYTHONPATH=str(ROOT)))

@@ -13,7 +13,7 @@ from pydrake.math import RigidTransform, RotationMatrix
 from pydrake.systems.sensors import ImageRgba8U
 
 from drake_grasp.control.arm_motion import ArmKinematics
-from drake_grasp.experiments.fingerprint import digest, scenario_text
+from drake_grasp.sweeps.fingerprint import digest, scenario_text
 from drake_grasp.objects.drake_model import with_mass_scale
 from drake_grasp.objects import resolve_object
 from drake_grasp.perception import trial_noise_seed

@@ -5,9 +5,9 @@ import json
 
 import pytest
 
-from drake_grasp.experiments import sensitivity as S
-from drake_grasp.experiments import sensitivity_report as R
-from drake_grasp.experiments.fingerprint import scenario_fingerprint
+from drake_grasp.studies import sensitivity as S
+from drake_grasp.studies import sensitivity_report as R
+from drake_grasp.sweeps.fingerprint import scenario_fingerprint
 from drake_grasp.station import load_scenario
 
 NINE = ("banana", "apple", "bell_pepper", "sponge", "spectacle_case", "toy_bridge", "soccer_ball", "game_box",

@@ -4,7 +4,7 @@ import math
 
 import pytest
 
-from drake_grasp.experiments.stats import format_rate, wilson_interval
+from drake_grasp.sweeps.stats import format_rate, wilson_interval
 
 
 def test_wilson_matches_published_values():
@@ -48,7 +48,7 @@ def test_format_rate():
 
 
 def test_short_rate_and_error_bars():
-    from drake_grasp.experiments.stats import error_bars, short_rate
+    from drake_grasp.sweeps.stats import error_bars, short_rate
 
     assert short_rate(9, 10).startswith("90 % (9/10; ") and short_rate(0, 0) == "n/a"
     heights, (below, above) = error_bars([(10, 10), (0, 4), (0, 0)])

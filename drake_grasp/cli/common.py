@@ -178,7 +178,7 @@ def jsonable(value):
 
 
 def write_json_atomically(path: pathlib.Path, record: dict) -> None:
-    from drake_grasp.experiments.results import write_atomically
+    from drake_grasp.sweeps.results import write_atomically
 
     write_atomically(path, json.dumps(jsonable(record), indent=2) + "\n")
 

@@ -61,7 +61,7 @@ def _names(text: str | None, option: str) -> tuple[str, ...] | None:
 
 
 def _run_capture(args) -> int:
-    from drake_grasp.experiments import capture
+    from drake_grasp.studies import capture
     from drake_grasp.objects import PAPER_OBJECTS
 
     executor = check_sweep_args(args)
@@ -131,7 +131,7 @@ def add_near_primitives(sub) -> None:
 
 
 def _run_near_primitives(args) -> int:
-    from drake_grasp.experiments.near_primitives import StudyConfig, run_study
+    from drake_grasp.studies.near_primitives import StudyConfig, run_study
 
     args.seed, args.quick = 0, False  # the trial seeds are 0..N-1 (--reference-seeds)
     executor = check_sweep_args(args)
@@ -178,7 +178,7 @@ def add_sensitivity(sub) -> None:
 
 def _sensitivity_config(args):
     """The SensitivityConfig the arguments ask for (UsageError or ValueError, one line, if bad)."""
-    from drake_grasp.experiments import sensitivity
+    from drake_grasp.studies import sensitivity
 
     trials = args.trials or (1 if args.quick else 4)
     sigma = sensitivity.DEFAULT_NOISE_SIGMA if args.noise_sigma is None else args.noise_sigma
@@ -201,9 +201,9 @@ def _sensitivity_config(args):
 
 
 def _run_sensitivity(args) -> int:
-    from drake_grasp.experiments import sensitivity
-    from drake_grasp.experiments.sensitivity_report import totals
-    from drake_grasp.experiments.stats import format_rate
+    from drake_grasp.studies import sensitivity
+    from drake_grasp.studies.sensitivity_report import totals
+    from drake_grasp.sweeps.stats import format_rate
 
     executor = check_sweep_args(args)
     config = _sensitivity_config(args)

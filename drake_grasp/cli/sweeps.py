@@ -126,7 +126,7 @@ def add_reproduce(sub) -> None:
 def check_sweep_args(args):
     """Rejects bad sweep arguments before any work starts; returns the executor the sweep runs on
     (a context manager: Ray, if started, is shut down on leaving it)."""
-    from drake_grasp.experiments.executors import EXECUTORS, make_executor
+    from drake_grasp.sweeps.executors import EXECUTORS, make_executor
 
     if args.workers is not None and args.workers < 1:
         raise UsageError(f"--workers must be >= 1, got {args.workers}")
@@ -182,8 +182,8 @@ def objects_arg(args, default: tuple[str, ...]) -> tuple[str, ...]:
 
 
 def _run_fig4(args) -> int:
-    from drake_grasp.experiments import fig4
-    from drake_grasp.experiments.lock import results_lock
+    from drake_grasp.studies import fig4
+    from drake_grasp.sweeps.lock import results_lock
 
     executor = check_sweep_args(args)
     config = fig4.Fig4Config.quick() if args.quick else fig4.Fig4Config.full()
@@ -209,7 +209,7 @@ def _run_fig4(args) -> int:
 
 
 def _run_fig6(args) -> int:
-    from drake_grasp.experiments import fig6
+    from drake_grasp.studies import fig6
     from drake_grasp.objects import PAPER_OBJECTS
 
     executor = check_sweep_args(args)
@@ -235,7 +235,7 @@ def _run_fig6(args) -> int:
 
 
 def _run_fig7(args) -> int:
-    from drake_grasp.experiments import fig7
+    from drake_grasp.studies import fig7
 
     executor = check_sweep_args(args)
     check_planner_args(str(args.steps), args.energy)
@@ -268,7 +268,7 @@ def _run_fig7(args) -> int:
 
 
 def _run_novel(args) -> int:
-    from drake_grasp.experiments import novel
+    from drake_grasp.studies import novel
 
     executor = check_sweep_args(args)
     scenario_file, scenario_name = scenario_args(args)
@@ -297,7 +297,7 @@ def _run_novel(args) -> int:
 
 
 def _run_reproduce(args) -> int:
-    from drake_grasp.experiments import reproduce
+    from drake_grasp.studies import reproduce
 
     executor = check_sweep_args(args)
     out = check_out_dir(args.out or ("out/reproduce-quick" if args.quick else "out/reproduce"))

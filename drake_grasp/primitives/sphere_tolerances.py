@@ -11,7 +11,7 @@ convex body (`silhouette_features`, what `vision.moments` measures on a mask), t
 themselves (`sphere_scales_from_ellipsoids`).
 
 Pure numpy/scipy math about the scorer (layer 0): no Drake systems, no experiment. The near-primitives
-study (`experiments/near_primitives.py`) reports how the scorer does on explored objects; its tests
+study (`studies/near_primitives.py`) reports how the scorer does on explored objects; its tests
 also use `ideal_statistics` to make statistics without a simulation.
 """
 

@@ -1,6 +1,6 @@
 """What one trial measured (`TrialRecord`), and the reasons a trial fails.
 
-A record is plain data: the runner turns it into a CSV row (`experiments.runner`), the command line
+A record is plain data: the runner turns it into a CSV row (`sweeps.runner`), the command line
 prints it as JSON. Distances in m, angles in rad, times in s.
 """
 

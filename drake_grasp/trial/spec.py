@@ -2,7 +2,7 @@
 
 A spec is all a worker needs to run a trial (`trial.run`): Drake Diagrams and Contexts do not pickle,
 so every worker builds its own from the spec. A spec also decides its record's fingerprint
-(`experiments.fingerprint.trial_fingerprint`).
+(`sweeps.fingerprint.trial_fingerprint`).
 """
 
 import dataclasses
