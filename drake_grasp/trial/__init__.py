@@ -21,7 +21,8 @@ from drake_grasp.success import DROPPED_DURING_LIFT, MISSED, SLIPPED_DURING_HOLD
 from drake_grasp.trial.compliant import run_compliant_trial
 from drake_grasp.trial.eigengrasp import plan_reachable_grasp, reachable_grasps, run_eigengrasp_trial
 from drake_grasp.trial.entry import oracle_plan, resolve, run
-from drake_grasp.trial.execution import PlanFunction, apply_variation, run_trial
+from drake_grasp.trial.execution import apply_variation
+from drake_grasp.trial.given_plan import PlanFunction, run_trial
 from drake_grasp.trial.record import FAILURES, SIMULATION_ERROR, TrialRecord
 from drake_grasp.trial.spec import METHODS, PlannerSettings, TrialSpec
 

@@ -1,24 +1,21 @@
 """A trial of the compliance-centric algorithm: explore with the wrist camera, decide, grasp, in one Diagram.
 
-The station, the visual primitives, the exploration sequencer and the supervisor are wired into one
-Diagram (docs/design.md §3.2) and run by the same `execution.execute` as every other method.
+What differs from every other method (docs/design.md §3.2): the wrist camera, the visual primitives,
+the exploration sequencer and the supervisor, wired around the station by `assembly.assemble_and_run`,
+which runs every method's trial the same way.
 """
 
-import dataclasses
 import time
 
 import numpy as np
-from pydrake.systems.framework import DiagramBuilder
-
 from drake_grasp.control.supervisor import AddCompliantGraspSupervisor
 from drake_grasp.estimate_error import EstimateError
 from drake_grasp.objects import ObjectSpec
 from drake_grasp.perception.evaluation import compare, ground_truth
 from drake_grasp.perception.wiring import (AddExplorationSequencer, AddVisualPrimitives, start_camera_pose,
                                            start_configuration)
-from drake_grasp.protocol import TrialVariation
-from drake_grasp.station import MakeStation, Scenario
-from drake_grasp.trial.execution import apply_variation, execute
+from drake_grasp.station import Scenario
+from drake_grasp.trial.assembly import Wiring, assemble_and_run
 from drake_grasp.trial.record import TrialRecord
 
 
@@ -38,30 +35,29 @@ def run_compliant_trial(scenario: Scenario, spec: ObjectSpec, *, seed: int, gras
     `estimate_error` (issue 15's capture regions) is added to the camera's estimate before the grasp
     is computed from it; the record keeps the camera's estimate as it was, and its errors.
     """
-    wall_start = time.perf_counter()
     config = perception_config or scenario.perception
-    protocol = scenario.protocol
-    variation = TrialVariation.draw(seed, protocol)
-    nominal = np.array([scenario.object.x, scenario.object.y, 0.0])
-    scenario, spec = apply_variation(scenario, spec, variation)
-    record = TrialRecord(object=spec.name, method="compliant", grasp=grasp or "", seed=seed, success=False,
-                         failure="", variation=dataclasses.asdict(variation), estimate_source="camera")
-    station = MakeStation(scenario, spec, camera=True)
-    builder = DiagramBuilder()
-    builder.AddNamedSystem("station", station.diagram)
-    primitives = AddVisualPrimitives(builder, station, config, connect_arm=False, noise_seed=seed)
-    sequencer = AddExplorationSequencer(builder, primitives, config)
-    q_start = start_configuration(station, start_camera_pose(nominal, config, config.depth.table_height), config)
-    supervisor = AddCompliantGraspSupervisor(builder, station, primitives, sequencer, q_start,
-                                             protocol.execution, grasp, estimate_error)
+    nominal = np.array([scenario.object.x, scenario.object.y, 0.0])  # where the object is expected
 
-    def start_camera_motion(context):
-        motion = primitives.camera_motion
-        motion.SetInitialPositions(motion.GetMyMutableContextFromRoot(context), q_start)
+    def wire(builder, station, scenario, spec, record) -> Wiring:
+        """Perception around the station, and the supervisor that decides and grasps."""
+        protocol = scenario.protocol
+        primitives = AddVisualPrimitives(builder, station, config, connect_arm=False, noise_seed=seed)
+        sequencer = AddExplorationSequencer(builder, primitives, config)
+        q_start = start_configuration(station, start_camera_pose(nominal, config, config.depth.table_height), config)
+        supervisor = AddCompliantGraspSupervisor(builder, station, primitives, sequencer, q_start,
+                                                 protocol.execution, grasp, estimate_error)
 
-    run = execute(builder, station, supervisor, protocol, q_start, record,
-                  config.sequencer.total_time + protocol.execution.hold_time + 60.0, replay_html, monitor_period,
-                  start_camera_motion)
+        def start_camera_motion(context):
+            motion = primitives.camera_motion
+            motion.SetInitialPositions(motion.GetMyMutableContextFromRoot(context), q_start)
+
+        return Wiring(supervisor, q_start, config.sequencer.total_time + protocol.execution.hold_time + 60.0,
+                      start_camera_motion)
+
+    trial = assemble_and_run(scenario, spec, seed=seed, camera=True, wire=wire, replay_html=replay_html,
+                             monitor_period=monitor_period,
+                             record_fields={"method": "compliant", "grasp": grasp or "", "estimate_source": "camera"})
+    record, run, spec = trial.record, trial.run, trial.spec
     decision = run.decision
     if decision is not None:
         estimate = decision.estimate
@@ -75,5 +71,5 @@ def run_compliant_trial(scenario: Scenario, spec: ObjectSpec, *, seed: int, gras
             record.estimate_errors = {
                 "centre": errors.centre, "depth": errors.depth, "axis_deg": errors.axis_deg,
                 "extents": [float(e) for e in errors.extents], "shape_correct": errors.shape_correct}
-    record.wall_time = time.perf_counter() - wall_start
+    record.wall_time = time.perf_counter() - trial.wall_start
     return record

@@ -16,7 +16,7 @@ from drake_grasp.estimate_error import EstimateError, perturb_pose
 from drake_grasp.grasps import planned_grasp
 from drake_grasp.objects import ObjectSpec
 from drake_grasp.station import MakeStation, Scenario
-from drake_grasp.trial.execution import PlanFunction, run_trial
+from drake_grasp.trial.given_plan import PlanFunction, run_trial
 from drake_grasp.trial.record import TrialRecord
 from drake_grasp.trial.spec import PlannerSettings, TrialSpec
 

@@ -19,7 +19,7 @@ from drake_grasp.objects import ObjectSpec, resolve_user_object
 from drake_grasp.station import DEFAULT_SCENARIO_FILE, Scenario, load_scenario
 from drake_grasp.trial.compliant import run_compliant_trial
 from drake_grasp.trial.eigengrasp import run_eigengrasp_trial
-from drake_grasp.trial.execution import PlanFunction, run_trial
+from drake_grasp.trial.given_plan import PlanFunction, run_trial
 from drake_grasp.trial.record import TrialRecord
 from drake_grasp.trial.spec import METHODS, TrialSpec
 

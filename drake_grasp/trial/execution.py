@@ -1,9 +1,8 @@
 """Executing a grasp and judging it: the one simulate-and-judge step every method goes through.
 
 Every method is executed by the same arm, hand controller and timings, and judged by the same test
-(docs/design.md §4.7). `run_trial` runs a given grasp plan (a compliant grasp from the ground truth, a
-grasp planned by the Eigengrasp baseline); the camera-driven algorithm (`trial.compliant`) builds its
-own Diagram and hands it to the same `execute`. In every trial:
+(docs/design.md §4.7): `trial.assembly` builds every method's Diagram and hands it to `execute` here.
+In every trial:
 
 * the object is placed with the trial's seeded variation (position, yaw, friction): `apply_variation`;
 * the executor moves to the pre-grasp pose, approaches (guarded), closes, lifts 10 cm and holds 10 s;
@@ -16,26 +15,19 @@ failed trial with its reason.
 
 import dataclasses
 import math
-import time
-from collections.abc import Callable
 
 import numpy as np
 from pydrake.math import RigidTransform
 from pydrake.multibody.tree import BodyIndex
 from pydrake.systems.framework import DiagramBuilder
 
-from drake_grasp.control.arm_motion import UNREACHABLE, ReachError
-from drake_grasp.control.grasp_executor import ConnectGraspExecutor, GraspExecutor, GraspPhase
-from drake_grasp.grasps import GraspPlan
+from drake_grasp.control.grasp_executor import GraspExecutor, GraspPhase
 from drake_grasp.objects import ObjectSpec
 from drake_grasp.protocol import TrialVariation
 from drake_grasp.simulation import AddReplay, StartSimulation, recording
-from drake_grasp.station import MakeStation, Scenario
+from drake_grasp.station import Scenario
 from drake_grasp.success import GraspObservation, judge_grasp
 from drake_grasp.trial.record import SIMULATION_ERROR, TrialRecord
-
-PlanFunction = Callable[[RigidTransform, ObjectSpec], GraspPlan]
-
 
 def apply_variation(scenario: Scenario, spec: ObjectSpec, variation: TrialVariation) -> tuple[Scenario, ObjectSpec]:
     """The scenario and object of one trial: placement offset and yawed, friction scaled."""
@@ -48,50 +40,6 @@ def apply_variation(scenario: Scenario, spec: ObjectSpec, variation: TrialVariat
     base_friction = spec.friction if spec.friction is not None else scenario.contact.friction
     spec = dataclasses.replace(spec, friction=base_friction * variation.friction_scale)
     return scenario, spec
-
-
-def run_trial(scenario: Scenario, spec: ObjectSpec, plan_function: PlanFunction, *, seed: int, method: str,
-              grasp: str, replay_html: str | None = None, monitor_period: float = 0.05) -> TrialRecord:
-    """Runs one trial of a given grasp plan and returns its record (never raises for a failed grasp
-    or simulation).
-
-    Args:
-        scenario: the station scenario (its protocol gives the variation, thresholds and timings).
-        spec: the object (placed as scenario.object says, then varied by the seed).
-        plan_function: (X_WO of the varied object, its spec) -> GraspPlan, for oracle and planner
-            methods (the compliance-centric algorithm decides its grasp itself: `compliant.run_compliant_trial`).
-        seed: the trial's seed: it fixes the variation, the same for every method.
-        method, grasp: names for the record.
-        replay_html: write a Meshcat replay there.
-        monitor_period: how often the runner checks the executor's phase, s.
-    """
-    wall_start = time.perf_counter()
-    protocol = scenario.protocol
-    variation = TrialVariation.draw(seed, protocol)
-    scenario, spec = apply_variation(scenario, spec, variation)
-    record = TrialRecord(object=spec.name, method=method, grasp=grasp, seed=seed, success=False, failure="",
-                         variation=dataclasses.asdict(variation))
-    station = MakeStation(scenario, spec, camera=False)
-    plant = station.plant
-    q_start = np.asarray(protocol.start_configuration, float)
-    try:
-        plan = plan_function(station.X_WO_nominal(), spec)
-        executor = GraspExecutor(plant, station.scene_graph, station.wam, plant.GetBodyIndices(station.hand), plan,
-                                 q_start, protocol.execution)
-    except ReachError as e:
-        record.failure, record.detail = UNREACHABLE, str(e)
-        record.wall_time = time.perf_counter() - wall_start
-        return record
-    record.estimate_source = getattr(plan, "source", "") or ""
-
-    builder = DiagramBuilder()
-    station_system = builder.AddNamedSystem("station", station.diagram)
-    builder.AddNamedSystem("executor", executor)
-    ConnectGraspExecutor(builder, station_system, executor)
-    execute(builder, station, executor, protocol, q_start, record, protocol.execution.hold_time + 60.0, replay_html,
-             monitor_period)
-    record.wall_time = time.perf_counter() - wall_start
-    return record
 
 
 @dataclasses.dataclass
