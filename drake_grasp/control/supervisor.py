@@ -89,22 +89,33 @@ class CompliantGraspSupervisor(GraspExecutor):
             plant, scene_graph, wam, hand_bodies, times: as GraspExecutor's.
             q_start: the arm's joint angles at time 0 (the exploration's start), rad.
             arm_sources: the arm switch's input port indices of (the camera motion, this system).
-            forced_grasp: execute this grasp instead of the most resembling shape's (Fig. 6).
+            forced_grasp: execute this grasp instead of the most resembling shape's (Fig. 6); the
+                default of the context's `forced_grasp` parameter (`set_forced_grasp`).
             estimate_error: a known error added to the estimate before the grasp is computed from it.
         """
-        if forced_grasp is not None:
-            forced_grasp = GraspType.parse(forced_grasp).value
-        self._forced_grasp = forced_grasp
         self._estimate_error = estimate_error
         self._arm_sources = arm_sources
         super().__init__(plant, scene_graph, wam, hand_bodies, None, q_start, times)
         self._phase_port = self.DeclareVectorInputPort("exploration_phase", 1)
         self._estimate_port = self.DeclareAbstractInputPort(
             "object_estimate", AbstractValue.Make(ObjectEstimate(status=OBJECT_NOT_FOUND)))
+        # The grasp to execute instead of the chosen one ("": the chosen one). A parameter, not a
+        # constant of the system, so that one exploration can be continued with each grasp from a
+        # clone of its context (`trial.execution.execute_branches`).
+        self._forced_grasp_index = self.DeclareAbstractParameter(AbstractValue.Make(_grasp_name(forced_grasp)))
         self.DeclareAbstractOutputPort("arm_source", lambda: AbstractValue.Make(arm_sources[0]), self._CalcArmSource,
                                        {self.abstract_state_ticket(self._progress_index)})
         self.DeclareVectorOutputPort("camera_motion_active", 1, self._CalcCameraMotionActive,
                                      {self.abstract_state_ticket(self._progress_index)})
+
+    def set_forced_grasp(self, context: Context, grasp: str | None) -> None:
+        """Makes the decision in `context` (this system's) execute `grasp` instead of the chosen
+        one (None: the chosen one). Takes effect at the decision, so only before it."""
+        context.get_mutable_abstract_parameter(self._forced_grasp_index).set_value(_grasp_name(grasp))
+
+    def forced_grasp(self, context: Context) -> str | None:
+        """The grasp the decision in `context` will execute instead of the chosen one (None: the chosen one)."""
+        return context.get_abstract_parameter(self._forced_grasp_index).get_value() or None
 
     def decision(self, context: Context) -> Decision | None:
         """The decision, once made (None while exploring)."""
@@ -122,14 +133,15 @@ class CompliantGraspSupervisor(GraspExecutor):
             return progress
         t = context.get_time()
         estimate: ObjectEstimate = self._estimate_port.Eval(context)
+        forced = self.forced_grasp(context)
         problem = estimate.problem()
         if problem:
-            decision = Decision(t, estimate, "", self._forced_grasp or "", None)
+            decision = Decision(t, estimate, "", forced or "", None)
             not_found = estimate.status == OBJECT_NOT_FOUND
             outcome, detail = (OBJECT_NOT_FOUND, "") if not_found else (PERCEPTION_FAILED, problem)
             return dataclasses.replace(self._end(progress, t, outcome, detail), decision=decision)
         chosen = GRASP_OF_SHAPE[estimate.best_shape]
-        executed = self._forced_grasp or chosen
+        executed = forced or chosen
         plan = plan_compliant_grasp(executed, perturb_estimate(estimate.as_grasp_estimate(), self._estimate_error))
         decision = Decision(t, estimate, chosen, executed, plan)
         q_now = np.asarray(self._wam_state_port.Eval(context), float)[:7]
@@ -138,6 +150,11 @@ class CompliantGraspSupervisor(GraspExecutor):
         except ReachError as e:
             return dataclasses.replace(self._end(progress, t, UNREACHABLE, str(e)), decision=decision)
         return dataclasses.replace(started, decision=decision)
+
+
+def _grasp_name(grasp: str | None) -> str:
+    """A grasp's canonical name ("" for none; ValueError for an unknown one)."""
+    return GraspType.parse(grasp).value if grasp else ""
 
 
 def AddCompliantGraspSupervisor(builder: DiagramBuilder, station, primitives, sequencer,

@@ -42,6 +42,10 @@ class Executor:
         """One line for progress output and benchmark reports."""
         return self.name
 
+    def slots(self) -> int:
+        """How many tasks run at once, as far as known before the executor starts (at least 1)."""
+        return 1
+
     def start(self) -> "Executor":
         """Starts what the executor needs now rather than on first use (a benchmark times it)."""
         return self
@@ -70,6 +74,9 @@ class LocalExecutor(Executor):
 
     def describe(self) -> str:
         return f"local, {self.workers} worker{'s' if self.workers > 1 else ''}"
+
+    def slots(self) -> int:
+        return self.workers
 
     def imap_unordered(self, fn, tasks):
         workers = min(self.workers, len(tasks))
@@ -161,6 +168,9 @@ class RayExecutor(Executor):
         self._started = False
         self._ready = False
         self._reaper = None
+
+    def slots(self) -> int:
+        return 1 if self.address else self.workers  # a cluster's CPUs are known once joined
 
     def describe(self) -> str:
         if self.address:

@@ -6,6 +6,11 @@ Contexts do not pickle) and turns its record into a CSV row, a plain dict. Recor
 resumable CSV (`results.ResultsTable`) keyed by (fingerprint, object, method, grasp, seed):
 rerunning the same sweep after an interruption computes only the missing trials, and a rerun with
 other inputs (scenario, object file, ...: `fingerprint.trial_fingerprint`) computes its own.
+
+Trials that can share work run together as one task (`group_specs`): the camera-driven trials of
+one object, seed and scenario that differ only in their grasp explore once (`trial.run_shared`).
+A task's records are written together when it finishes, each whole: a killed run loses at most
+the tasks in flight, and progress still counts trials.
 """
 
 import contextlib
@@ -19,8 +24,8 @@ from drake_grasp.sweeps.executors import Executor, LocalExecutor
 from drake_grasp.sweeps.results import ResultsTable, json_finite
 from drake_grasp.trial.spec import TrialSpec  # re-exported: `runner.TrialSpec` keeps working
 
-__all__ = ["TRIAL_FIELDS", "TRIAL_KEY", "TRIAL_TYPES", "TrialSpec", "fingerprints", "run_one", "run_trials",
-           "select", "spec_key", "trial_table"]
+__all__ = ["TRIAL_FIELDS", "TRIAL_KEY", "TRIAL_TYPES", "TrialSpec", "fingerprints", "group_specs", "run_group",
+           "run_one", "run_trials", "select", "spec_key", "trial_table"]
 
 TRIAL_FIELDS = [
     "fingerprint", "object", "method", "grasp", "seed", "success", "failure", "lift", "slip_distance", "slip_angle",
@@ -80,6 +85,42 @@ def _run_one(spec: TrialSpec, replay_html: str | None = None) -> dict:
     return _row(spec, record, _extra(spec, record, scenario, obj))
 
 
+def run_group(specs: list[TrialSpec]) -> list[dict]:
+    """Runs trials that share work (one group of `group_specs`) in this process; returns their
+    records as `run_one` does, in order."""
+    from drake_grasp.objects import pose_warnings_announced
+
+    with pose_warnings_announced():
+        from drake_grasp import trial
+
+        scenario, obj = trial.resolve(specs[0])
+        records = trial.run_shared(specs, scenario=scenario, obj=obj)
+        return [_row(spec, record, _extra(spec, record, scenario, obj)) for spec, record in zip(specs, records)]
+
+
+def group_specs(specs: list[TrialSpec], workers: int = 1) -> list[list[int]]:
+    """The specs' indices grouped into tasks: camera-driven trials with one exploration
+    (`trial.exploration_key`), one per grasp, together, in the order of their first spec; every
+    other spec alone. While there are fewer tasks than `workers`, groups are split (a worker with
+    nothing to do is slower than one exploring again)."""
+    from drake_grasp.trial.entry import exploration_key
+
+    groups, open_groups = [], {}
+    for index, spec in enumerate(specs):
+        key = exploration_key(spec)
+        group = open_groups.get(key) if key is not None else None
+        if group is None or any(specs[i].grasp == spec.grasp for i in group):
+            group = []
+            groups.append(group)
+            if key is not None:
+                open_groups[key] = group
+        group.append(index)
+    while len(groups) < workers and any(len(g) > 1 for g in groups):
+        largest = max(range(len(groups)), key=lambda i: len(groups[i]))
+        groups.insert(largest + 1, [groups[largest].pop()])
+    return groups
+
+
 def _extra(spec: TrialSpec, record, scenario, obj) -> dict:
     """The row's `extra` cell: what the method adds to the record's common fields."""
     if spec.method == "compliant":
@@ -123,15 +164,19 @@ def run_trials(specs: list[TrialSpec], csv_path: pathlib.Path, workers: int | No
     if done:
         print(f"{label}: resuming, {done}/{total} trials already in {csv_path}", file=progress)
     executor = executor or LocalExecutor(workers)
+    groups = group_specs([spec for spec, _ in todo], executor.slots())
+    tasks = [([todo[i][0] for i in group],) for group in groups]
     start = time.perf_counter()
-    with contextlib.closing(executor.imap_unordered(run_one, [(spec,) for spec, _ in todo])) as results:
-        for index, row in results:
-            row["fingerprint"] = todo[index][1]
-            table.append([row])
-            done += 1
-            verdict = "ok" if row["success"] in (True, "1", 1) else row["failure"]
-            print(f"{label}: {done}/{total} {row['object']} {row['method']}/{row['grasp']} seed {row['seed']}: "
-                  f"{verdict} ({time.perf_counter() - start:.0f} s)", file=progress, flush=True)
+    with contextlib.closing(executor.imap_unordered(run_group, tasks)) as results:
+        for index, rows in results:
+            for i, row in zip(groups[index], rows):
+                row["fingerprint"] = todo[i][1]
+            table.append(rows)
+            for row in rows:
+                done += 1
+                verdict = "ok" if row["success"] in (True, "1", 1) else row["failure"]
+                print(f"{label}: {done}/{total} {row['object']} {row['method']}/{row['grasp']} seed {row['seed']}: "
+                      f"{verdict} ({time.perf_counter() - start:.0f} s)", file=progress, flush=True)
     return select(table.rows(), specs, prints)
 
 

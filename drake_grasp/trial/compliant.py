@@ -5,8 +5,6 @@ the exploration sequencer and the supervisor, wired around the station by `assem
 which runs every method's trial the same way.
 """
 
-import time
-
 import numpy as np
 from drake_grasp.control.supervisor import AddCompliantGraspSupervisor
 from drake_grasp.estimate_error import EstimateError
@@ -15,7 +13,7 @@ from drake_grasp.perception.evaluation import compare, ground_truth
 from drake_grasp.perception.wiring import (AddExplorationSequencer, AddVisualPrimitives, start_camera_pose,
                                            start_configuration)
 from drake_grasp.station import Scenario
-from drake_grasp.trial.assembly import Wiring, assemble_and_run
+from drake_grasp.trial.assembly import Assembled, Wiring, assemble_and_run_branches
 from drake_grasp.trial.record import TrialRecord
 
 
@@ -35,6 +33,19 @@ def run_compliant_trial(scenario: Scenario, spec: ObjectSpec, *, seed: int, gras
     `estimate_error` (issue 15's capture regions) is added to the camera's estimate before the grasp
     is computed from it; the record keeps the camera's estimate as it was, and its errors.
     """
+    return run_compliant_trials(scenario, spec, seed=seed, grasps=[grasp], replay_html=replay_html,
+                                perception_config=perception_config, monitor_period=monitor_period,
+                                estimate_error=estimate_error)[0]
+
+
+def run_compliant_trials(scenario: Scenario, spec: ObjectSpec, *, seed: int, grasps: list[str | None],
+                         replay_html: str | None = None, perception_config=None, monitor_period: float = 0.05,
+                         estimate_error: EstimateError | None = None) -> list[TrialRecord]:
+    """`run_compliant_trial` for each of `grasps` (None: the algorithm's own choice) after one
+    exploration: the exploration and the decision's estimate do not depend on the grasp executed,
+    so they are simulated once, and each grasp goes on from a copy of the state at the decision
+    (`assembly.assemble_and_run_branches`). The records are those of the trials run one by one
+    (wall time aside: each gets its share of the exploration's)."""
     config = perception_config or scenario.perception
     nominal = np.array([scenario.object.x, scenario.object.y, 0.0])  # where the object is expected
 
@@ -45,18 +56,28 @@ def run_compliant_trial(scenario: Scenario, spec: ObjectSpec, *, seed: int, gras
         sequencer = AddExplorationSequencer(builder, primitives, config)
         q_start = start_configuration(station, start_camera_pose(nominal, config, config.depth.table_height), config)
         supervisor = AddCompliantGraspSupervisor(builder, station, primitives, sequencer, q_start,
-                                                 protocol.execution, grasp, estimate_error)
+                                                 protocol.execution, grasps[0], estimate_error)
 
         def start_camera_motion(context):
             motion = primitives.camera_motion
             motion.SetInitialPositions(motion.GetMyMutableContextFromRoot(context), q_start)
 
-        return Wiring(supervisor, q_start, config.sequencer.total_time + protocol.execution.hold_time + 60.0,
-                      start_camera_motion)
+        def force_grasp(context, grasp):
+            supervisor.set_forced_grasp(supervisor.GetMyMutableContextFromRoot(context), grasp)
 
-    trial = assemble_and_run(scenario, spec, seed=seed, camera=True, wire=wire, replay_html=replay_html,
-                             monitor_period=monitor_period,
-                             record_fields={"method": "compliant", "grasp": grasp or "", "estimate_source": "camera"})
+        return Wiring(supervisor, q_start, config.sequencer.total_time + protocol.execution.hold_time + 60.0,
+                      start_camera_motion, force_grasp)
+
+    branches = [({"method": "compliant", "grasp": grasp or "", "estimate_source": "camera"}, grasp)
+                for grasp in grasps]
+    trials = assemble_and_run_branches(scenario, spec, seed=seed, branches=branches, camera=True, wire=wire,
+                                       replay_html=replay_html, monitor_period=monitor_period)
+    return [_compliant_record(trial) for trial in trials]
+
+
+def _compliant_record(trial: Assembled) -> TrialRecord:
+    """A camera-driven trial's record, with what the decision saw: the estimate, the resemblances,
+    the chosen grasp and the estimate's errors against the truth at the decision."""
     record, run, spec = trial.record, trial.run, trial.spec
     decision = run.decision
     if decision is not None:
@@ -71,5 +92,5 @@ def run_compliant_trial(scenario: Scenario, spec: ObjectSpec, *, seed: int, gras
             record.estimate_errors = {
                 "centre": errors.centre, "depth": errors.depth, "axis_deg": errors.axis_deg,
                 "extents": [float(e) for e in errors.extents], "shape_correct": errors.shape_correct}
-    record.wall_time = time.perf_counter() - trial.wall_start
+    record.wall_time = trial.wall_time()
     return record

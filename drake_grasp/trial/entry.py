@@ -9,15 +9,21 @@ Every caller runs a trial through `run`: the sweeps' runner (in worker processes
   computes the grasp in the same simulation (`compliant.run_compliant_trial`);
 * **eigengrasp**: a grasp of the Eigengrasp planner (`eigengrasp.run_eigengrasp_trial`).
 
+Camera-driven trials that differ only in the grasp they are forced to execute (Fig. 6 runs all three
+after the same exploration) share that exploration: `run_shared` runs them as one simulation that
+branches at the decision (`compliant.run_compliant_trials`), with the records they give one by one.
+
 A spec's estimate error (issue 15) is added to the estimate the grasp is computed from and recorded
 in the record's `variation` (only when there is one, so that every other record stays as it was).
 """
+
+import dataclasses
 
 from drake_grasp.estimate_error import EstimateError, perturb_estimate
 from drake_grasp.grasps import oracle_estimate, plan_compliant_grasp
 from drake_grasp.objects import ObjectSpec, resolve_user_object
 from drake_grasp.station import DEFAULT_SCENARIO_FILE, Scenario, load_scenario
-from drake_grasp.trial.compliant import run_compliant_trial
+from drake_grasp.trial.compliant import run_compliant_trial, run_compliant_trials
 from drake_grasp.trial.eigengrasp import run_eigengrasp_trial
 from drake_grasp.trial.given_plan import PlanFunction, run_trial
 from drake_grasp.trial.record import TrialRecord
@@ -74,3 +80,52 @@ def run(spec: TrialSpec, replay_html: str | None = None, *, scenario: Scenario |
     if error is not None:
         record.variation["estimate_error"] = error.to_dict()
     return record
+
+
+def exploration_key(spec: TrialSpec) -> TrialSpec | None:
+    """What a spec's exploration depends on: specs with the same key explore identically and may
+    share one exploration (`run_shared`). The spec without its grasp for a camera-driven trial
+    (object and its options, seed, scenario, estimate error); None for the other methods, whose
+    trials share nothing."""
+    return dataclasses.replace(spec, grasp="") if spec.method == "compliant" else None
+
+
+def run_shared(specs: list[TrialSpec], *, scenario: Scenario | None = None, obj: ObjectSpec | None = None,
+               monitor_period: float = 0.05) -> list[TrialRecord]:
+    """The records of `specs`, in order, as `run` gives them one by one; specs with one
+    `exploration_key` (at most one spec per grasp) run as one simulation that explores once and
+    branches at the decision, the others one by one.
+
+    Args:
+        specs: trials that all name one scenario and one object (with the same options).
+        scenario, obj: those, when the caller has them already (else as `resolve`).
+        monitor_period: as `run`'s.
+
+    Raises:
+        ValueError: specs that name different scenarios or objects; a bad scenario or object.
+    """
+    if not specs:
+        return []
+    where = {(s.scenario_file, s.scenario_name, s.object, s.scale, s.largest_component, s.join_gap, s.inertia)
+             for s in specs}
+    if len(where) > 1:
+        raise ValueError("run_shared: the specs name more than one scenario or object")
+    if scenario is None or obj is None:
+        scenario, obj = resolve(specs[0])
+    records: list[TrialRecord | None] = [None] * len(specs)
+    groups: dict[TrialSpec, list[int]] = {}
+    for index, spec in enumerate(specs):
+        key = exploration_key(spec)
+        if key is None or any(specs[i].grasp == spec.grasp for i in groups.get(key, [])):
+            records[index] = run(spec, scenario=scenario, obj=obj, monitor_period=monitor_period)
+        else:
+            groups.setdefault(key, []).append(index)
+    for key, indices in groups.items():
+        error = key.estimate_error if key.has_estimate_error else None
+        shared = run_compliant_trials(scenario, obj, seed=key.seed, grasps=[specs[i].grasp or None for i in indices],
+                                      monitor_period=monitor_period, estimate_error=error)
+        for i, record in zip(indices, shared):
+            if error is not None:
+                record.variation["estimate_error"] = error.to_dict()
+            records[i] = record
+    return records

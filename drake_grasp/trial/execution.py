@@ -15,11 +15,14 @@ failed trial with its reason.
 
 import dataclasses
 import math
+import time
+from collections.abc import Callable
 
 import numpy as np
 from pydrake.math import RigidTransform
 from pydrake.multibody.tree import BodyIndex
-from pydrake.systems.framework import DiagramBuilder
+from pydrake.systems.analysis import InitializeParams, Simulator
+from pydrake.systems.framework import Context, DiagramBuilder
 
 from drake_grasp.control.grasp_executor import GraspExecutor, GraspPhase
 from drake_grasp.objects import ObjectSpec
@@ -44,16 +47,32 @@ def apply_variation(scenario: Scenario, spec: ObjectSpec, variation: TrialVariat
 
 @dataclasses.dataclass
 class Executed:
-    """What `execute` saw besides the record: the supervisor's decision (None for a given plan) and
-    the object's true pose when the grasp was decided (for evaluating the estimate)."""
+    """What `execute` saw besides the record: the supervisor's decision (None for a given plan), the
+    object's true pose when the grasp was decided (for evaluating the estimate), and the wall time
+    the run took, s (a branch's own part plus its share of the part it shared: `execute_branches`)."""
 
     decision: object = None
     X_WO_decision: RigidTransform | None = None
+    wall_time: float = 0.0
+
+
+@dataclasses.dataclass
+class Branch:
+    """One way a run goes on from its decision (`execute_branches`).
+
+    Attributes:
+        record: the record this branch fills.
+        prepare: called with the root context before the decision, to set what makes this branch
+            differ (for the camera-driven supervisor, the grasp it is forced to execute).
+    """
+
+    record: TrialRecord
+    prepare: Callable[[Context], None] | None = None
 
 
 def execute(builder: DiagramBuilder, station, executor: GraspExecutor, protocol, q_start: np.ndarray,
-             record: TrialRecord, time_limit: float, replay_html: str | None, monitor_period: float,
-             initialize=None) -> Executed:
+            record: TrialRecord, time_limit: float, replay_html: str | None, monitor_period: float,
+            initialize=None) -> Executed:
     """Builds the Diagram in `builder`, simulates the executor's sequence to its end, and judges it
     with the success test, filling `record` (failure, lift, slip, contacts, fingers, sim_time).
 
@@ -69,83 +88,184 @@ def execute(builder: DiagramBuilder, station, executor: GraspExecutor, protocol,
         monitor_period: how often the phase is checked, s.
         initialize: called with the root context before the simulation starts (more initial state).
     """
-    plant = station.plant
-    station_system = station.diagram
-    meshcat = AddReplay(builder, station_system) if replay_html else None
+    return execute_branches(builder, station, executor, protocol, q_start, [Branch(record)], time_limit,
+                            replay_html, monitor_period, initialize)[0]
+
+
+def execute_branches(builder: DiagramBuilder, station, executor: GraspExecutor, protocol, q_start: np.ndarray,
+                     branches: list[Branch], time_limit: float, replay_html: str | None = None,
+                     monitor_period: float = 0.05, initialize=None, wall_start: float | None = None) -> list[Executed]:
+    """As `execute`, for several trials that are identical until the executor's decision: the run
+    up to it (the camera's exploration) is simulated once, and each branch goes on from there.
+
+    The first branch is simulated without a break, exactly as `execute` would. Each monitor period
+    that starts while the executor explores begins with a copy of the root context (Drake's
+    `Context.Clone`: time, state and parameters); the period in which the decision falls is
+    therefore covered by a copy from its start, and every other branch continues from that copy,
+    with its own Simulator and its own `prepare`, as if it had run from time 0 (docs/performance.md
+    §7 shows the records identical). Nothing may differ between the branches before the decision
+    but what `prepare` sets.
+
+    Returns each branch's `Executed`, in order; each branch's record is filled as by `execute`. Its
+    wall time is its own part plus an equal share of the shared part, which begins at `wall_start`
+    (a `time.perf_counter()`; default: now).
+    """
+    if not branches:
+        return []
+    if replay_html and len(branches) > 1:
+        raise ValueError("a replay shows one trial: run branches without one")
+    meshcat = AddReplay(builder, station.diagram) if replay_html else None
+    first = branches[0]
     sim = StartSimulation(builder.Build(), station, q_start, initialize)
-    simulator, context, plant_context = sim.simulator, sim.context, sim.plant_context
-    executor_context = executor.GetMyContextFromRoot(context)
-    object_body = plant.get_body(plant.GetBodyIndices(station.object_instance)[0])
-    palm = plant.GetFrameByName("bh_palm")
-    table_bodies = set(int(b) for b in plant.GetBodyIndices(plant.GetModelInstanceByName("table")))
-    X_WO = station.X_WO_nominal()  # the object at rest on the table: the lift is measured from it
-    run = Executed()
+    if first.prepare is not None:
+        first.prepare(sim.context)
+    wall_start = time.perf_counter() if wall_start is None else wall_start
+    watch = _Watch(station, executor, sim.context, protocol, time_limit, monitor_period)
+    with recording(meshcat, replay_html, look_at=station.X_WO_nominal().translation()):
+        try:
+            sim.simulator.Initialize()
+            watch.run(sim.simulator, keep_snapshot=len(branches) > 1)
+        except Exception as e:  # a failed simulation is a failed trial, never a crash of the run
+            watch.failed(e)
+    wall_end = time.perf_counter()
+    shared = watch.wall_decided - wall_start if watch.wall_decided is not None else 0.0
+    own = wall_end - (watch.wall_decided or wall_start)
+    results = [watch.finish(first.record)]
+    walls = [own]
+    for branch in branches[1:]:
+        branch_start = time.perf_counter()
+        if watch.snapshot is None:  # the shared part failed before a decision: so does every branch
+            results.append(watch.finish(branch.record))
+        else:
+            context = watch.snapshot.Clone()
+            if branch.prepare is not None:
+                branch.prepare(context)
+            simulator = Simulator(sim.diagram, context)
+            branch_watch = _Watch(station, executor, context, protocol, time_limit, monitor_period)
+            try:
+                simulator.Initialize(InitializeParams(suppress_initialization_events=True))
+                branch_watch.run(simulator)
+            except Exception as e:
+                branch_watch.failed(e)
+            results.append(branch_watch.finish(branch.record))
+        walls.append(time.perf_counter() - branch_start)
+    for run, wall in zip(results, walls):
+        run.wall_time = wall + shared / len(branches)
+    return results
 
-    def X_PO() -> RigidTransform:
-        return palm.CalcPoseInWorld(plant_context).inverse() @ object_body.EvalPoseInWorld(plant_context)
 
-    def touching() -> tuple[list[str], bool]:
+class _Watch:
+    """Watches one simulation of a grasp sequence every monitor period (the phase, divergence, the
+    time limit, what the success test needs), and judges it at its end."""
+
+    def __init__(self, station, executor: GraspExecutor, context: Context, protocol, time_limit: float,
+                 monitor_period: float):
+        plant = station.plant
+        self.station, self.executor, self.context, self.protocol = station, executor, context, protocol
+        self.time_limit, self.monitor_period = time_limit, monitor_period
+        self.plant, self.plant_context = plant, plant.GetMyContextFromRoot(context)
+        self.executor_context = executor.GetMyContextFromRoot(context)
+        self.object_body = plant.get_body(plant.GetBodyIndices(station.object_instance)[0])
+        self.palm = plant.GetFrameByName("bh_palm")
+        self.table_bodies = set(int(b) for b in plant.GetBodyIndices(plant.GetModelInstanceByName("table")))
+        self.X_WO = station.X_WO_nominal()  # the object at rest on the table: the lift is measured from it
+        self.executed = Executed()
+        self.X_PO_hold, self.rise_hold, self.contacts_after_close = None, None, []
+        self.error: Exception | None = None
+        self.wall_decided: float | None = None  # perf_counter when the phase left EXPLORE
+        # With `run(keep_snapshot=True)`: the root context at the start of the monitor period in
+        # which the phase left EXPLORE.
+        self.snapshot: Context | None = None
+
+    def phase(self) -> GraspPhase:
+        return self.executor.phase(self.executor_context)
+
+    def X_PO(self) -> RigidTransform:
+        return (self.palm.CalcPoseInWorld(self.plant_context).inverse()
+                @ self.object_body.EvalPoseInWorld(self.plant_context))
+
+    def touching(self) -> tuple[list[str], bool]:
         """Hand links touching the object, and whether the object touches the table."""
-        names, on_table = _object_contacts(plant, plant_context, object_body, table_bodies)
+        names, on_table = _object_contacts(self.plant, self.plant_context, self.object_body, self.table_bodies)
         return sorted(names), on_table
 
-    X_PO_hold, rise_hold, contacts_after_close = None, None, []
-    try:
-        with recording(meshcat, replay_html, look_at=X_WO.translation()):
-            simulator.Initialize()
-            if executor.phase(executor_context) != GraspPhase.EXPLORE:
-                run.X_WO_decision = object_body.EvalPoseInWorld(plant_context)
-            while executor.phase(executor_context) != GraspPhase.DONE:
-                if context.get_time() > time_limit:
-                    raise RuntimeError(f"the grasp sequence did not finish in {time_limit:.0f} s")
-                phase_before = executor.phase(executor_context)
-                simulator.AdvanceTo(context.get_time() + monitor_period)
-                phase = executor.phase(executor_context)
-                p_WO = object_body.EvalPoseInWorld(plant_context).translation()
-                if not np.all(np.isfinite(p_WO)) or np.linalg.norm(p_WO) > 10.0:
-                    raise RuntimeError("the simulation diverged (object far away or not finite)")
-                if phase_before == GraspPhase.EXPLORE and phase != GraspPhase.EXPLORE:
-                    run.X_WO_decision = object_body.EvalPoseInWorld(plant_context)
-                if phase_before == GraspPhase.CLOSE and phase == GraspPhase.LIFT:
-                    contacts_after_close, _ = touching()
-                if phase_before != GraspPhase.HOLD and phase == GraspPhase.HOLD:
-                    X_PO_hold = X_PO()
-                    rise_hold = float(p_WO[2] - X_WO.translation()[2])
-    except Exception as e:  # a failed simulation is a failed trial, never a crash of the run
-        record.failure = SIMULATION_ERROR
-        record.detail = str(e).strip().splitlines()[0] if str(e).strip() else type(e).__name__
-        record.sim_time = context.get_time()
-        run.decision = executor.progress(executor_context).decision
-        return run
+    def run(self, simulator: Simulator, keep_snapshot: bool = False) -> None:
+        """Simulates the sequence to its end (raises what the simulation raises). With `keep_snapshot`,
+        keeps a copy of the root context from the start of the monitor period in which the phase
+        left EXPLORE (`snapshot`)."""
+        context, last = self.context, None
+        if self.phase() != GraspPhase.EXPLORE:
+            self.executed.X_WO_decision = self.object_body.EvalPoseInWorld(self.plant_context)
+        while self.phase() != GraspPhase.DONE:
+            if context.get_time() > self.time_limit:
+                raise RuntimeError(f"the grasp sequence did not finish in {self.time_limit:.0f} s")
+            phase_before = self.phase()
+            if keep_snapshot and phase_before == GraspPhase.EXPLORE:
+                if last is None:
+                    last = context.Clone()
+                else:
+                    last.SetTimeStateAndParametersFrom(context)
+            simulator.AdvanceTo(context.get_time() + self.monitor_period)
+            phase = self.phase()
+            p_WO = self.object_body.EvalPoseInWorld(self.plant_context).translation()
+            if not np.all(np.isfinite(p_WO)) or np.linalg.norm(p_WO) > 10.0:
+                raise RuntimeError("the simulation diverged (object far away or not finite)")
+            if phase_before == GraspPhase.EXPLORE and phase != GraspPhase.EXPLORE:
+                self.executed.X_WO_decision = self.object_body.EvalPoseInWorld(self.plant_context)
+                self.wall_decided = time.perf_counter()
+                self.snapshot = last
+            if phase_before == GraspPhase.CLOSE and phase == GraspPhase.LIFT:
+                self.contacts_after_close, _ = self.touching()
+            if phase_before != GraspPhase.HOLD and phase == GraspPhase.HOLD:
+                self.X_PO_hold = self.X_PO()
+                self.rise_hold = float(p_WO[2] - self.X_WO.translation()[2])
 
-    progress = executor.progress(executor_context)
-    run.decision = progress.decision
-    record.sim_time = context.get_time()
-    if progress.outcome:  # the sequence ended before a grasp (object not found, arm could not reach)
-        record.failure, record.detail = progress.outcome, progress.detail
+    def failed(self, e: Exception) -> None:
+        """The simulation raised `e`: the trial fails with it."""
+        self.error = e
+
+    def finish(self, record: TrialRecord) -> Executed:
+        """Fills `record` from what was watched (a failed simulation: SIMULATION_ERROR), and judges it
+        with the success test; returns what the run saw besides."""
+        plant, plant_context, protocol = self.plant, self.plant_context, self.protocol
+        run = dataclasses.replace(self.executed)
+        progress = self.executor.progress(self.executor_context)
+        run.decision = progress.decision
+        record.sim_time = self.context.get_time()
+        if self.error is not None:
+            record.failure = SIMULATION_ERROR
+            message = str(self.error).strip()
+            record.detail = message.splitlines()[0] if message else type(self.error).__name__
+            return run
+        if progress.outcome:  # the sequence ended before a grasp (object not found, arm could not reach)
+            record.failure, record.detail = progress.outcome, progress.detail
+            return run
+        contacts_end, on_table = self.touching()
+        p_WO_end = self.object_body.EvalPoseInWorld(plant_context).translation()
+        record.lift = float(p_WO_end[2] - self.X_WO.translation()[2])
+        record.contacts_after_close = " ".join(self.contacts_after_close)
+        record.contacts_at_end = " ".join(contacts_end)
+        record.approach_stopped_on_contact = bool(progress.stopped_on_contact)
+        station = self.station
+        q_hand = station.hand_controller.joint_angles(plant.get_state_output_port(station.hand).Eval(plant_context))
+        record.finger_angles = [float(q_hand[0])] + [float(a) for a in q_hand[2:8]]
+        station_system = station.diagram
+        status = station_system.GetOutputPort("hand.finger_status").Eval(
+            station_system.GetMyContextFromRoot(self.context))
+        record.breakaway = [bool(b > 0.5) for b in status[:3]]
+        record.breakaway_angles = [float(a) for a in status[3:]]
+        if self.X_PO_hold is not None:
+            X_PO = self.X_PO()
+            slip = self.X_PO_hold.inverse() @ X_PO
+            record.slip_distance = float(np.linalg.norm(X_PO.translation() - self.X_PO_hold.translation()))
+            record.slip_angle = float(slip.rotation().ToAngleAxis().angle())
+        observation = GraspObservation(touched_after_close=bool(self.contacts_after_close),
+                                       rise_at_hold=self.rise_hold, lift_at_end=record.lift, on_table_at_end=on_table,
+                                       slip_distance=record.slip_distance, slip_angle=record.slip_angle)
+        record.failure = judge_grasp(observation, protocol.execution.lift_height, protocol.slip_distance,
+                                     protocol.slip_angle_deg)
+        record.success = record.failure == ""
         return run
-    contacts_end, on_table = touching()
-    p_WO_end = object_body.EvalPoseInWorld(plant_context).translation()
-    record.lift = float(p_WO_end[2] - X_WO.translation()[2])
-    record.contacts_after_close = " ".join(contacts_after_close)
-    record.contacts_at_end = " ".join(contacts_end)
-    record.approach_stopped_on_contact = bool(progress.stopped_on_contact)
-    q_hand = station.hand_controller.joint_angles(plant.get_state_output_port(station.hand).Eval(plant_context))
-    record.finger_angles = [float(q_hand[0])] + [float(a) for a in q_hand[2:8]]
-    status = station_system.GetOutputPort("hand.finger_status").Eval(station_system.GetMyContextFromRoot(context))
-    record.breakaway = [bool(b > 0.5) for b in status[:3]]
-    record.breakaway_angles = [float(a) for a in status[3:]]
-    if X_PO_hold is not None:
-        slip = X_PO_hold.inverse() @ X_PO()
-        record.slip_distance = float(np.linalg.norm(X_PO().translation() - X_PO_hold.translation()))
-        record.slip_angle = float(slip.rotation().ToAngleAxis().angle())
-    observation = GraspObservation(touched_after_close=bool(contacts_after_close), rise_at_hold=rise_hold,
-                                   lift_at_end=record.lift, on_table_at_end=on_table,
-                                   slip_distance=record.slip_distance, slip_angle=record.slip_angle)
-    record.failure = judge_grasp(observation, protocol.execution.lift_height, protocol.slip_distance,
-                                 protocol.slip_angle_deg)
-    record.success = record.failure == ""
-    return run
 
 
 def _object_contacts(plant, plant_context, object_body, table_bodies: set) -> tuple[set, bool]:

@@ -4,7 +4,6 @@ the arm starts at the protocol's start configuration, and a `GraspExecutor` runs
 is `assembly.assemble_and_run`, as for every method.
 """
 
-import time
 from collections.abc import Callable
 
 import numpy as np
@@ -56,5 +55,5 @@ def run_trial(scenario: Scenario, spec: ObjectSpec, plan_function: PlanFunction,
 
     trial = assemble_and_run(scenario, spec, seed=seed, camera=False, wire=wire, replay_html=replay_html,
                              monitor_period=monitor_period, record_fields={"method": method, "grasp": grasp})
-    trial.record.wall_time = time.perf_counter() - trial.wall_start
+    trial.record.wall_time = trial.wall_time()
     return trial.record
