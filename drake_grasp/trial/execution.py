@@ -99,8 +99,8 @@ def execute_branches(builder: DiagramBuilder, station, executor: GraspExecutor, 
     up to it (the camera's exploration) is simulated once, and each branch goes on from there.
 
     The first branch is simulated without a break, exactly as `execute` would. Each monitor period
-    that starts while the executor explores begins with a copy of the root context (Drake's
-    `Context.Clone`: time, state and parameters); the period in which the decision falls is
+    that starts while the executor explores begins with a copy of the root context (a clone, then
+    its time and state copied again each period); the period in which the decision falls is
     therefore covered by a copy from its start, and every other branch continues from that copy,
     with its own Simulator and its own `prepare`, as if it had run from time 0 (docs/performance.md
     §7 shows the records identical). Nothing may differ between the branches before the decision
@@ -204,7 +204,7 @@ class _Watch:
                 if last is None:
                     last = context.Clone()
                 else:
-                    last.SetTimeStateAndParametersFrom(context)
+                    _copy_time_and_state(context, last)
             simulator.AdvanceTo(context.get_time() + self.monitor_period)
             phase = self.phase()
             p_WO = self.object_body.EvalPoseInWorld(self.plant_context).translation()
@@ -266,6 +266,20 @@ class _Watch:
                                      protocol.slip_angle_deg)
         record.success = record.failure == ""
         return run
+
+
+def _copy_time_and_state(source: Context, target: Context) -> None:
+    """Makes `target`, a clone of `source` taken earlier in the same simulation, equal to it again:
+    time and state (continuous, discrete, abstract). Parameters are not copied: nothing changes
+    them while a simulation runs, and copying them costs more than the rest of a period's
+    simulation (SceneGraph keeps its geometry, hydroelastic meshes included, as a parameter)."""
+    target.SetTime(source.get_time())
+    if source.num_continuous_states():
+        target.SetContinuousState(source.get_continuous_state_vector().CopyToVector())
+    if source.num_discrete_state_groups():
+        target.get_mutable_discrete_state().SetFrom(source.get_discrete_state())
+    if source.num_abstract_states():
+        target.get_mutable_abstract_state().SetFrom(source.get_abstract_state())
 
 
 def _object_contacts(plant, plant_context, object_body, table_bodies: set) -> tuple[set, bool]:
