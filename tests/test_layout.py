@@ -30,3 +30,25 @@ def test_the_sweep_machinery_imports_no_study():
                        [a.name for a in node.names] if isinstance(node, ast.Import) else [])
             for module in modules:
                 assert not module.startswith(("drake_grasp.studies", "drake_grasp.experiments")), (path.name, module)
+
+
+# A study module (one experiment) against its helpers: pure analysis, reports, the results page.
+STUDY_MODULES = ("fig4", "fig6", "fig7", "novel", "sensitivity", "capture", "epsilon_physics", "near_primitives",
+                 "reproduce")
+HELPERS = ("calibration", "capture_region", "replays", "report_page", "near_primitives_report", "sensitivity_report")
+
+
+def test_every_study_says_what_it_runs_and_writes():
+    """Each study's docstring ends with 'The experiment:': its objects, grasps, seeds and what it writes,
+    so the module reads as a description of its experiment before any code."""
+    root = pathlib.Path(drake_grasp.__file__).parent / "studies"
+    found = {p.stem for p in root.glob("*.py")} - {"__init__"}
+    assert found == set(STUDY_MODULES) | set(HELPERS), "a new module in studies/: list it above"
+    for name in STUDY_MODULES:
+        doc = ast.get_docstring(ast.parse((root / f"{name}.py").read_text()))
+        assert "\nThe experiment:\n" in doc, name
+        block = doc.split("\nThe experiment:\n")[1]
+        labels = " ".join(line.split(":")[0].strip() for line in block.splitlines() if line.startswith("    ")
+                          and not line.startswith("     "))
+        for word in ("objects", "grasps", "seeds", "writes"):
+            assert word in labels, (name, word)

@@ -25,6 +25,15 @@ for compliant grasps only.
 All trials of one round run in parallel; each is written to ``capture.csv`` as it finishes with a
 fingerprint that includes its error, so a rerun resumes (the next round's points are a pure function
 of the results so far).
+
+The experiment:
+    objects: the paper's nine (or --objects);
+    grasps: each compliant grasp (or the chosen one) from the true estimate with a known error, and
+        the planner's best reachable grasp with an erred object pose;
+    seeds: one trial seed for every sample (one placement, the same for all errors); the errors
+        are the samples, refined round by round where outcomes change;
+    writes: capture.csv (one row per trial), epsilon.csv (static scores), capture.png and
+        capture.svg, summary.md and summary.json.
 """
 
 import dataclasses

@@ -13,6 +13,13 @@ about the centre of mass scaled by the object's largest radius: docs/design.md �
 The pairs (ε, held) then go to `calibration`: the reliability curve, the ROC area, and the trials
 where ε and physics disagree. Scores are cached in ``epsilon.csv`` beside the trials, keyed like them
 (fingerprint, object, method, grasp, seed), so a rerun scores only new trials.
+
+The experiment:
+    objects and grasps: those of a study's trials whose grasp is fixed before anything moves
+        (oracle and planner trials, with or without an estimate error);
+    seeds: the trials' own (the hand pose is rebuilt from each trial's spec);
+    writes: epsilon.csv beside the trials (one ε per trial), epsilon.png and epsilon.svg (the
+        reliability curve), epsilon.json, and replays of the trials where ε and physics disagree.
 """
 
 import dataclasses

@@ -13,6 +13,14 @@ so an error along x runs along the axis and an error along y across it.
 The sweep is resumable: each (shape, size) is one task, whose rows are appended to ``fig4.csv`` as
 soon as it finishes, each with the fingerprint of the sweep's settings (`Fig4Config.fingerprint`); a
 rerun computes only what is missing for the current fingerprint.
+
+The experiment:
+    objects: spheres, cubes and cylinders (0.30 m long), 2-34 cm (`Fig4Config`: 27 sizes; --quick 9),
+        floating in free space;
+    grasps: the spherical mode for spheres, the cylindrical mode for cubes and cylinders, quasi-static,
+        with a hand position error along x or y (-6 to 6 cm: 21 errors; --quick 7);
+    seeds: none (quasi-static and deterministic);
+    writes: fig4.csv (one row per shape, size, axis and error), fig4.png and fig4.svg.
 """
 
 import contextlib

@@ -11,6 +11,13 @@ Trials are independent, seeded (trial i of every object and grasp uses seed `see
 seeds as every other method), run in a local process pool, and written to ``fig6.csv`` as they
 finish, each with the fingerprint of its inputs: rerunning the command after an interruption
 resumes, and only records of the current inputs are counted.
+
+The experiment:
+    objects: the paper's nine (or --objects: catalogue names, primitives, mesh or model files);
+    grasps: spherical, cylindrical and box, each after the camera's exploration (one exploration
+        per object and seed, shared by its three grasps: `trial.run_shared`);
+    seeds: trial i of every object and grasp uses seed + i, i < trials (default 10);
+    writes: fig6.csv (one row per trial), fig6.png and fig6.svg, and the summary lines.
 """
 
 import dataclasses

@@ -10,6 +10,14 @@ Fig. 6's results when they exist, else run here), the Eigengrasp *average* over 
 its *best* grasp's success (chosen in hindsight).
 
 Plans are stored as JSON (``plans/``) and trials in ``fig7.csv`` as they finish: rerunning resumes.
+
+The experiment:
+    objects: the six modelled objects of the paper's Fig. 7 (or --objects);
+    grasps: the planner's three best grasps the arm can reach (one plan per object), against the
+        compliance-centric algorithm's chosen grasp;
+    seeds: trial i of every grasp uses seed + i, i < trials (default 10), as Fig. 6;
+    writes: plans/ (one JSON per object), fig7.csv (planner trials), fig7_compliant.csv (the
+        algorithm's trials not found in Fig. 6's results), fig7.png and fig7.svg.
 """
 
 import contextlib

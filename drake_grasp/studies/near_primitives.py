@@ -24,6 +24,16 @@ agree.
 Sets: ``near`` (the generated objects of one generator seed), ``perfect`` (Drake's exact sphere,
 cube and cylinder, and the generator's own perfect meshes: no departure, tessellated and loaded like
 the others) and ``catalogue`` (the paper's nine objects).
+
+The experiment:
+    objects: generated near-primitives (`count` per class, default 10, in a development set of
+        generator seed `seed` and an evaluation set of `eval_seed`), perfect primitives and the
+        paper's nine;
+    grasps: none: the camera's exploration alone (the resemblances and the chosen primitive);
+    seeds: trial seed 0 for the near-primitives; 0..reference_seeds-1 for the perfect primitives and
+        the paper's objects;
+    writes: objects-seed*/ and objects-perfect/, explorations.csv (one row per exploration),
+        near_primitives.png, summary.md.
 """
 
 from __future__ import annotations

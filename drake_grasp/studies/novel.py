@@ -16,6 +16,14 @@ Everything is written under one folder as it finishes and resumes like the figur
 its plans, and then ``novel.csv`` (one row per object), ``novel.png``/``.svg`` and ``summary.md``:
 chosen-grasp success overall and per object class with 95 % Wilson intervals, the planner's average
 and best, and why the failed trials failed.
+
+The experiment:
+    objects: `count` generated novel objects (default 20, generator seed `object_seed`), every class;
+    grasps: Fig. 6's three compliant grasps after the camera's exploration, and Fig. 7's planner's
+        three best reachable grasps;
+    seeds: trial i uses seed + i, i < trials (default 5), for both methods;
+    writes: objects/, compliant/fig6.csv, eigengrasp/fig7.csv and plans, novel.csv (one row per
+        object), novel.png and novel.svg, summary.md.
 """
 
 import collections

@@ -6,6 +6,12 @@ claim of the paper, the paper's number or statement, ours, and whether ours agre
 computed from the measured results with the rules stated beside each claim; nothing is tuned to agree.
 The same text is also written as ``report.html``, the results page (`report_page`): figures inline, and
 one Meshcat replay per object and method (`replays`), all of it openable offline in a browser.
+
+The experiment:
+    objects, grasps and seeds: Fig. 4's, Fig. 6's and Fig. 7's (the paper's), then the novel-object
+        study's (--quick: fewer of each);
+    writes: fig4/, fig6/, fig7/ and novel/ (each study's own files), replays/ (one Meshcat replay
+        per object and method), report.md and report.html.
 """
 
 import dataclasses

@@ -27,6 +27,14 @@ This module is the sweep: the conditions (`Condition`, `default_conditions`, `Se
 their scenarios and conditions.yaml, the trial specs, and `run_sensitivity`, the public entry. What
 the records mean (cells, totals, the claims' verdicts, the summary, conditions.csv, the figure) is
 `studies/sensitivity_report.py`, a separate concept that imports nothing from here.
+
+The experiment:
+    objects: the paper's nine (or --objects);
+    grasps: the algorithm's own choice (camera-driven), under each condition (friction, mass,
+        perception), one factor changed at a time;
+    seeds: trial i of every object and condition uses seed + i, i < trials (default 4);
+    writes: conditions.yaml, sensitivity.csv (one row per trial), conditions.csv, cost.json,
+        sensitivity.png and sensitivity.svg, summary.md.
 """
 
 import dataclasses
