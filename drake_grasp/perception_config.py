@@ -8,6 +8,7 @@ from it.
 
 import dataclasses
 import math
+import typing
 
 from drake_grasp.control.camera_motion import CameraMotionParams
 from drake_grasp.primitives.camera import SegmentationParams
@@ -16,6 +17,7 @@ from drake_grasp.primitives.principal_axis import PrincipalAxisParams
 from drake_grasp.primitives.resemblance import DEFAULT_ARCS, ResemblanceParams
 from drake_grasp.primitives.scores import SHAPES, ScoreParams
 from drake_grasp.primitives.sequencer import SequencerParams
+from drake_grasp.primitives.table_top import TableTopParams
 
 
 @dataclasses.dataclass
@@ -35,6 +37,9 @@ class PerceptionConfig:
     scores: ScoreParams = dataclasses.field(default_factory=ScoreParams)
     camera_motion: CameraMotionParams = dataclasses.field(default_factory=CameraMotionParams)
     start_configuration: list[float] = dataclasses.field(default_factory=lambda: [0.0, 0.6, 0.0, 1.6, 0.0, 0.9, 0.0])
+    # The table-top estimate from depth views (primitives.table_top); None: the silhouettes' estimate
+    # alone, as in the paper. None is left out of the scenario's YAML dump (fingerprints unchanged).
+    table_top: typing.Optional[TableTopParams] = None
 
     @property
     def period(self) -> float:
@@ -51,3 +56,9 @@ class PerceptionConfig:
         self.sequencer.validate()
         for shape in SHAPES:
             getattr(self, shape).validate()
+        if self.table_top is not None:
+            self.table_top.validate()
+            ratio = self.table_top.view_period * self.rate_hz
+            if abs(ratio - round(ratio)) > 1e-6:
+                raise ValueError(f"table_top.view_period must be a multiple of the camera period (1/rate_hz = "
+                                 f"{self.period:g} s), got {self.table_top.view_period}")

@@ -38,6 +38,7 @@ from drake_grasp.objects import ObjectSpec
 from drake_grasp.primitives.camera import SilhouetteCamera
 from drake_grasp.primitives.camera_model import CameraIntrinsics
 from drake_grasp.primitives.depth import DepthPrimitive
+from drake_grasp.primitives.depth_views import DepthViews
 from drake_grasp.primitives.estimate import ObjectEstimator
 from drake_grasp.primitives.principal_axis import PrincipalAxisPrimitive
 from drake_grasp.primitives.resemblance import ShapeResemblancePrimitive
@@ -71,6 +72,7 @@ class VisualPrimitives:
     twist_sum: Adder
     camera_motion: CameraTwistController
     estimator: ObjectEstimator
+    depth_views: DepthViews | None = None  # with a table-top estimate (`config.table_top`) only
 
     def primitives(self) -> list:
         return [self.depth, self.axis] + [self.resemblance[s] for s in SHAPES]
@@ -169,7 +171,15 @@ def AddVisualPrimitives(builder: DiagramBuilder, station: Station, config: Perce
     for shape in SHAPES:
         builder.Connect(resemblance[shape].GetOutputPort("resemblance"),
                         estimator.GetInputPort(f"{shape}_resemblance"))
-    return VisualPrimitives(camera, depth, axis, resemblance, twist_sum, camera_motion, estimator)
+    depth_views = None
+    if config.table_top is not None:
+        depth_views = builder.AddNamedSystem("depth_views", DepthViews(camera, config.table_top,
+                                                                       config.depth.table_height))
+        builder.Connect(station_system.GetOutputPort("camera.depth_image"), depth_views.GetInputPort("depth_image"))
+        builder.Connect(station_system.GetOutputPort(image_port), depth_views.image_input_port())
+        builder.Connect(station_system.GetOutputPort("camera.X_WC"), depth_views.GetInputPort("X_WC"))
+        builder.Connect(depth_views.GetOutputPort("table_top"), estimator.GetInputPort("table_top"))
+    return VisualPrimitives(camera, depth, axis, resemblance, twist_sum, camera_motion, estimator, depth_views)
 
 
 def AddExplorationSequencer(builder: DiagramBuilder, primitives: VisualPrimitives, config: PerceptionConfig
@@ -180,6 +190,8 @@ def AddExplorationSequencer(builder: DiagramBuilder, primitives: VisualPrimitive
     builder.Connect(primitives.camera.GetOutputPort("camera_sample"), sequencer.GetInputPort("camera_sample"))
     builder.Connect(sequencer.GetOutputPort("phase"), primitives.estimator.GetInputPort("phase"))
     builder.Connect(sequencer.GetOutputPort("camera_active"), primitives.camera.GetInputPort("active"))
+    if primitives.depth_views is not None:
+        builder.Connect(sequencer.GetOutputPort("camera_active"), primitives.depth_views.GetInputPort("active"))
     builder.Connect(sequencer.GetOutputPort("depth_command"), primitives.depth.GetInputPort("command"))
     builder.Connect(sequencer.GetOutputPort("axis_command"), primitives.axis.GetInputPort("command"))
     for shape in SHAPES:

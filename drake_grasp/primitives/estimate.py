@@ -20,6 +20,7 @@ import numpy as np
 from pydrake.common.value import AbstractValue
 from pydrake.systems.framework import Context, LeafSystem
 
+from drake_grasp.primitives.depth_views import TableTopVector
 from drake_grasp.primitives.estimators import is_upright
 from drake_grasp.primitives.scores import SHAPES
 from drake_grasp.primitives.sequencer import ExplorationPhase, phase_value
@@ -53,6 +54,10 @@ class ObjectEstimate:
         evidence: what the resemblances rest on (variations, invariances, roundness; see scores).
         elongation: the mean eccentricity of the silhouette over the exploration.
         timings: build, simulated and wall-clock times, frames rendered, phase start times.
+        table_top: with the table-top estimate (a scenario's `perception.table_top`), what it rests on
+            and how sure it is: {"views", "cells", "clipped", "uncertainty": {"centre" (m),
+            "axis_deg", "extents" (m, 3)}, "silhouettes": the silhouettes' own centre, principal
+            axis, axes and extents, which it replaced}; None without it (and left out of `to_dict`).
     """
 
     status: str
@@ -66,6 +71,7 @@ class ObjectEstimate:
     evidence: dict = dataclasses.field(default_factory=dict)
     elongation: float = math.nan
     timings: dict = dataclasses.field(default_factory=dict)
+    table_top: dict | None = None
 
     @property
     def found(self) -> bool:
@@ -127,7 +133,8 @@ class ObjectEstimate:
                 return x.item()
             return x
 
-        return {f.name: plain(getattr(self, f.name)) for f in dataclasses.fields(self)}
+        return {f.name: plain(getattr(self, f.name)) for f in dataclasses.fields(self)
+                if not (f.name == "table_top" and self.table_top is None)}
 
 
 def _short(values) -> str:
@@ -194,7 +201,7 @@ def extents_along_axes(axes: np.ndarray, axis: np.ndarray, extents: np.ndarray) 
 
 def gather_estimate(phase: ExplorationPhase, centre: np.ndarray, camera_position: np.ndarray, axis: np.ndarray,
                     axis_info: np.ndarray, extents: np.ndarray, resemblances: dict, evidence: np.ndarray,
-                    extents_frame: np.ndarray | None = None) -> ObjectEstimate:
+                    extents_frame: np.ndarray | None = None, table_top=None) -> ObjectEstimate:
     """The ObjectEstimate from the primitives' outputs (see `ObjectEstimator`'s ports for each).
 
     Not found: the sequencer never saw the object (or, while it explores, no centre yet).
@@ -204,6 +211,10 @@ def gather_estimate(phase: ExplorationPhase, centre: np.ndarray, camera_position
     to the world's), so that the supervisor does not grasp along an axis nobody measured. An upright
     elongated object takes its horizontal axes from the depth primitive's `extents_frame`
     (`upright_axes`): its sides, along which its extents were measured.
+
+    With a table-top estimate (`table_top`, a `depth_views.TableTopVector` that holds one), its centre,
+    axes and extents replace the silhouettes' (`with_table_top`); whether the object is elongated,
+    and the resemblances, stay the silhouettes'.
     """
     no_centre = not np.all(np.isfinite(centre))
     if phase == ExplorationPhase.NOT_FOUND or (no_centre and not phase.finished):
@@ -219,11 +230,50 @@ def gather_estimate(phase: ExplorationPhase, centre: np.ndarray, camera_position
         axes = axes if sides is None else sides
     centre = np.array(centre, float)
     camera_position = np.array(camera_position, float)
-    return ObjectEstimate(
+    estimate = ObjectEstimate(
         status="ok", centre=centre, depth=float(np.linalg.norm(centre - camera_position)),
         camera_position=camera_position, principal_axis=principal_axis, axes=axes,
         extents=extents_along_axes(axes, axis, extents), resemblances={s: float(resemblances[s]) for s in SHAPES},
         evidence={n: float(v) for n, v in zip(EVIDENCE_NAMES, evidence)}, elongation=float(mean_eccentricity))
+    if table_top is not None and table_top.estimate is not None and not (elongated and principal_axis is not None
+                                                                         and not np.all(np.isfinite(principal_axis))):
+        estimate = with_table_top(estimate, table_top, elongated)
+    return estimate
+
+
+def with_table_top(estimate: ObjectEstimate, table_top, elongated: bool) -> ObjectEstimate:
+    """`estimate` with the table-top estimate's centre, axes and extents (`depth_views.TableTopVector`).
+
+    An elongated object's axis a is the column solid's axis of least inertia; an upright one (a within
+    45° of the vertical) takes its horizontal axes from the footprint's smallest rectangle
+    (`upright_axes`), and its extents along (a, b, c) are (height, across the sides, along them). An
+    object that is not elongated has a along the footprint rectangle's longer side, b across it and
+    c up. The depth (from the last camera position) follows the new centre.
+    """
+    t = table_top.estimate
+    spans_sides = np.asarray(t.extents_sides, float)
+    axes = None
+    if elongated and is_upright(t.principal_axis):
+        axes = upright_axes(np.asarray(t.principal_axis, float), t.sides)
+        extents = spans_sides[[2, 1, 0]]
+        principal_axis = np.asarray(t.principal_axis, float).copy()
+    if elongated and (not is_upright(t.principal_axis) or axes is None):
+        axes, principal_axis = estimate_axes(np.asarray(t.principal_axis, float), True)
+        extents = np.asarray(t.extents_axis, float).copy()
+    elif not elongated:
+        axes, principal_axis = estimate_axes(np.asarray(t.sides, float), False)
+        extents = spans_sides.copy()
+    spread = table_top.spread
+    uncertainty = None if spread is None else {"centre": spread.centre, "axis_deg": spread.axis_deg,
+                                               "extents": [float(x) for x in spread.extents]}
+    silhouettes = {"centre": estimate.centre, "principal_axis": estimate.principal_axis, "axes": estimate.axes,
+                   "extents": estimate.extents}
+    centre = np.asarray(t.centre, float).copy()
+    return dataclasses.replace(
+        estimate, centre=centre, depth=float(np.linalg.norm(centre - estimate.camera_position)), axes=axes,
+        principal_axis=principal_axis, extents=extents,
+        table_top={"views": table_top.views, "cells": t.cells, "clipped": table_top.clipped,
+                   "uncertainty": uncertainty, "silhouettes": silhouettes})
 
 
 class ObjectEstimator(LeafSystem):
@@ -237,6 +287,7 @@ class ObjectEstimator(LeafSystem):
         axis (3), axis_info (3): from the principal axis primitive.
         sphere_resemblance, cylinder_resemblance, box_resemblance (1 each): in [0, 1].
         evidence (9): from the box resemblance primitive (its `evidence` output).
+        table_top (25, optional): `depth_views.TableTopVector`; unconnected, the silhouettes' estimate.
     Output ports:
         estimate: the ObjectEstimate (abstract).
     """
@@ -249,6 +300,7 @@ class ObjectEstimator(LeafSystem):
         for shape in SHAPES:
             self.DeclareVectorInputPort(f"{shape}_resemblance", 1)
         self.DeclareVectorInputPort("evidence", 9)
+        self._table_top_port = self.DeclareVectorInputPort("table_top", 25)
         self.DeclareAbstractOutputPort("estimate", lambda: AbstractValue.Make(ObjectEstimate(status=OBJECT_NOT_FOUND)),
                                        self._CalcEstimate, {self.all_input_ports_ticket()})
 
@@ -259,4 +311,9 @@ class ObjectEstimator(LeafSystem):
         output.set_value(gather_estimate(
             phase_value(read("phase")[0]), read("centre"), read("camera_sample")[13:16], read("axis"),
             read("axis_info"), read("extents"), {s: read(f"{s}_resemblance")[0] for s in SHAPES}, read("evidence"),
-            read("extents_frame")))
+            read("extents_frame"), self._TableTop(context)))
+
+    def _TableTop(self, context: Context):
+        if not self._table_top_port.HasValue(context):
+            return None
+        return TableTopVector.from_vector(self._table_top_port.Eval(context))

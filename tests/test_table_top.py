@@ -1,0 +1,153 @@
+"""The table-top estimate's pure functions: back-projection, the height map, the column solid."""
+
+import math
+
+import numpy as np
+import pytest
+
+from drake_grasp.primitives import table_top
+from drake_grasp.primitives.camera_model import CameraIntrinsics
+from drake_grasp.primitives.depth_views import TableTopVector
+from drake_grasp.primitives.estimate import ExplorationPhase, gather_estimate
+
+
+def _surface_points(top_z, xs, ys):
+    """A grid of points of a height function top_z(x, y) (NaN: no surface there)."""
+    X, Y = np.meshgrid(xs, ys, indexing="ij")
+    Z = top_z(X, Y)
+    keep = np.isfinite(Z)
+    return np.column_stack([X[keep], Y[keep], Z[keep]])
+
+
+def _map_of(points, cell=0.003, centre=(0.5, 0.0)):
+    height_map = table_top.HeightMap.around(centre, cell, 128)
+    height_map.add(points)
+    return height_map
+
+
+def _rotated_box_top(centre, length, width, height, yaw):
+    c, s = math.cos(yaw), math.sin(yaw)
+
+    def top(X, Y):
+        u = c * (X - centre[0]) + s * (Y - centre[1])
+        v = -s * (X - centre[0]) + c * (Y - centre[1])
+        inside = (np.abs(u) <= length / 2) & (np.abs(v) <= width / 2)
+        return np.where(inside, height, np.nan)
+
+    return top
+
+
+def test_back_projection_of_a_plane_seen_from_above():
+    intrinsics = CameraIntrinsics.from_fov_y(64, 48, math.radians(60))
+    R_WC = np.diag([1.0, -1.0, -1.0])  # looking straight down
+    p_WC = np.array([0.5, 0.0, 0.4])
+    depth = np.full((48, 64), 0.3)  # a plane 0.1 m above the table
+    mask = np.zeros((48, 64), bool)
+    mask[10:30, 20:40] = True
+    points = table_top.back_project(depth, mask, intrinsics, R_WC, p_WC)
+    assert points.shape == (400, 3)
+    np.testing.assert_allclose(points[:, 2], 0.1, atol=1e-12)
+    # The pixel at the principal point lies straight below the camera.
+    centre = table_top.back_project(depth, _at(48, 64, 24, 32), intrinsics, R_WC, p_WC)
+    assert np.linalg.norm(centre[0, :2] - p_WC[:2]) < 0.3 / intrinsics.fx  # within a pixel
+    # Masked-out, infinite and zero depths give no point.
+    depth[12, 22], depth[13, 23] = np.inf, 0.0
+    assert len(table_top.back_project(depth, mask, intrinsics, R_WC, p_WC)) == 398
+
+
+def _at(h, w, v, u):
+    mask = np.zeros((h, w), bool)
+    mask[v, u] = True
+    return mask
+
+
+def test_a_lying_box_gives_its_centre_axis_and_size():
+    yaw = math.radians(30)
+    top = _rotated_box_top((0.52, 0.01), 0.12, 0.05, 0.04, yaw)
+    points = _surface_points(top, np.arange(0.40, 0.65, 0.001), np.arange(-0.12, 0.13, 0.001))
+    estimate = table_top.estimate(_map_of(points))
+    np.testing.assert_allclose(estimate.centre, [0.52, 0.01, 0.02], atol=0.002)
+    axis = np.array([math.cos(yaw), math.sin(yaw), 0.0])
+    assert math.degrees(math.acos(abs(estimate.principal_axis @ axis))) < 2.0
+    assert math.degrees(math.acos(abs(estimate.sides @ axis))) < 2.0
+    np.testing.assert_allclose(estimate.extents_axis, [0.12, 0.05, 0.04], atol=0.004)
+    np.testing.assert_allclose(estimate.extents_sides, [0.12, 0.05, 0.04], atol=0.004)
+
+
+def test_a_flat_T_has_its_centroid_not_its_box_centre():
+    # A T of two 2 cm thick bars: the stem 10 x 2 cm along x, the bar 2 x 8 cm across its end.
+    def top(X, Y):
+        stem = (np.abs(Y) <= 0.01) & (X >= 0.45) & (X <= 0.55)
+        bar = (np.abs(Y) <= 0.04) & (X >= 0.55) & (X <= 0.57)
+        return np.where(stem | bar, 0.02, np.nan)
+
+    points = _surface_points(top, np.arange(0.40, 0.60, 0.001), np.arange(-0.06, 0.06, 0.001))
+    estimate = table_top.estimate(_map_of(points))
+    # Areas 20 cm^2 at x = 0.50 and 16 cm^2 at x = 0.56: the centroid at x = 0.5267.
+    assert estimate.centre[0] == pytest.approx(0.5267, abs=0.002)
+    assert estimate.centre[1] == pytest.approx(0.0, abs=0.002)
+    assert estimate.height == pytest.approx(0.02, abs=1e-9)
+
+
+def test_a_tilted_rod_gives_a_tilted_axis():
+    # A rod resting on something at one end: its top rises 1 cm per 10 cm (5.7 deg).
+    def top(X, Y):
+        inside = (np.abs(Y) <= 0.01) & (X >= 0.45) & (X <= 0.60)
+        return np.where(inside, 0.02 + 0.1 * (X - 0.45), np.nan)
+
+    points = _surface_points(top, np.arange(0.40, 0.65, 0.001), np.arange(-0.03, 0.03, 0.001))
+    estimate = table_top.estimate(_map_of(points))
+    tilt = math.degrees(math.asin(abs(estimate.principal_axis[2])))
+    assert 2.0 < tilt < 10.0
+
+
+def test_gaps_between_views_are_closed_and_the_map_knows_when_it_overflows():
+    top = _rotated_box_top((0.5, 0.0), 0.08, 0.08, 0.05, 0.0)
+    sparse = _surface_points(top, np.arange(0.46, 0.54, 0.004), np.arange(-0.04, 0.04, 0.004))
+    height_map = _map_of(sparse)
+    xy, h = height_map.columns()
+    assert np.sum(~np.isnan(height_map.heights)) < len(h)  # holes filled
+    assert not height_map.clipped
+    height_map.add(np.array([[2.0, 0.0, 0.05]]))
+    assert height_map.clipped
+
+
+def test_too_few_cells_give_no_estimate_and_the_halves_give_a_spread():
+    assert table_top.estimate(_map_of(np.array([[0.5, 0.0, 0.01]])), min_cells=12) is None
+    top = _rotated_box_top((0.5, 0.0), 0.10, 0.04, 0.03, 0.0)
+    a = table_top.estimate(_map_of(_surface_points(top, np.arange(0.44, 0.56, 0.002), np.arange(-0.03, 0.03, 0.002))))
+    b = table_top.estimate(_map_of(_surface_points(top, np.arange(0.44, 0.56, 0.002) + 0.004,
+                                                   np.arange(-0.03, 0.03, 0.002))))
+    spread = table_top.spread(a, b, 0.003)
+    assert spread.centre == pytest.approx(math.hypot(0.002, 0.003 / 2), abs=0.001)
+    assert table_top.spread(a, None, 0.003) is None
+
+
+def test_min_area_rectangle_of_a_rotated_rectangle():
+    angle = math.radians(20)
+    corners = np.array([[0, 0], [0.1, 0], [0.1, 0.03], [0, 0.03]])
+    R = np.array([[math.cos(angle), -math.sin(angle)], [math.sin(angle), math.cos(angle)]])
+    found, spans = table_top.min_area_rectangle(corners @ R.T)
+    assert found == pytest.approx(angle, abs=1e-9)
+    np.testing.assert_allclose(spans, [0.1, 0.03], atol=1e-12)
+
+
+def test_the_estimate_takes_the_table_top_centre_axes_and_extents():
+    top = _rotated_box_top((0.52, 0.01), 0.12, 0.05, 0.04, math.radians(30))
+    t = table_top.estimate(_map_of(_surface_points(top, np.arange(0.40, 0.65, 0.001), np.arange(-0.12, 0.13, 0.001))))
+    vector = TableTopVector(t, table_top.Spread(0.001, 0.5, np.full(3, 0.001)), False, 24)
+    again = TableTopVector.from_vector(vector.to_vector())
+    np.testing.assert_allclose(again.estimate.centre, t.centre)
+    assert again.views == 24 and again.spread.axis_deg == 0.5
+    args = (ExplorationPhase.DONE, np.array([0.5, 0.0, 0.02]), np.array([0.5, 0.0, 0.35]),
+            np.array([1.0, 0.0, 0.0]), np.array([1.0, 1.5, 0.0]), np.array([0.1, 0.06, 0.05]),
+            {"sphere": 0.1, "cylinder": 0.2, "box": 0.9}, np.zeros(9), np.array([1.0, 0.0, 0.0]))
+    silhouettes = gather_estimate(*args)
+    assert silhouettes.table_top is None and "table_top" not in silhouettes.to_dict()
+    estimate = gather_estimate(*args, again)
+    np.testing.assert_allclose(estimate.centre, t.centre)
+    assert abs(estimate.principal_axis @ t.principal_axis) > 0.999  # elongated: the solid's axis
+    np.testing.assert_allclose(estimate.extents, t.extents_axis)
+    assert estimate.table_top["views"] == 24
+    np.testing.assert_allclose(estimate.table_top["silhouettes"]["centre"], [0.5, 0.0, 0.02])
+    assert estimate.resemblances == silhouettes.resemblances
