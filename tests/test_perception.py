@@ -149,6 +149,14 @@ def test_full_exploration_meets_the_acceptance_tolerances(name):
 def test_object_estimate_defaults_are_not_found():
     estimate = ObjectEstimate(status="object not found")
     assert not estimate.found and estimate.to_dict()["centre"] is None and math.isnan(estimate.depth)
+    assert math.isnan(estimate.resemblance_margin)
+
+
+def test_the_resemblance_margin_is_the_lead_of_the_best_shape():
+    estimate = ObjectEstimate(status="ok", resemblances={"sphere": 0.30, "cylinder": 0.55, "box": 0.50})
+    assert estimate.best_shape == "cylinder" and estimate.resemblance_margin == pytest.approx(0.05)
+    tie = ObjectEstimate(status="ok", resemblances={"sphere": 0.9, "cylinder": 0.1, "box": 0.9})
+    assert tie.resemblance_margin == 0.0
 
 
 def test_the_algorithm_side_never_imports_the_evaluation_side():

@@ -151,3 +151,42 @@ def test_the_estimate_takes_the_table_top_centre_axes_and_extents():
     assert estimate.table_top["views"] == 24
     np.testing.assert_allclose(estimate.table_top["silhouettes"]["centre"], [0.5, 0.0, 0.02])
     assert estimate.resemblances == silhouettes.resemblances
+
+
+def test_a_short_exploration_with_depth_views_places_an_L_by_its_mass(tmp_path):
+    """Real rendering and simulation: an L lying flat (2 cm thick) explored with the table-top
+    estimate. The depth views leave the exploration as it was (same resemblances and silhouettes'
+    estimate as without them), and the table-top centre is within 5 mm of the centre of mass, where
+    the silhouettes' box-like model puts it at the L's bounding-box centre (about 2 cm away)."""
+    import dataclasses as dc
+
+    import trimesh
+
+    from drake_grasp.objects import resolve_object
+    from drake_grasp.perception import explore
+    from drake_grasp.perception.evaluation import ground_truth
+    from drake_grasp.station import load_scenario
+    from test_perception import short_config
+
+    bars = [trimesh.creation.box([0.12, 0.03, 0.02]), trimesh.creation.box([0.03, 0.09, 0.02])]
+    bars[0].apply_translation([0.0, -0.03, 0.0])
+    bars[1].apply_translation([-0.045, 0.0, 0.0])
+    path = tmp_path / "L.obj"
+    trimesh.boolean.union(bars).export(path)
+    spec = resolve_object(str(path))
+    scenario = load_scenario()
+    plain = explore(scenario, short_config(), spec).estimate
+    config = short_config()
+    config.table_top = load_scenario(scenario_name="table_top").perception.table_top
+    result = explore(scenario, config, spec)
+    estimate = result.estimate
+    assert estimate.resemblances == plain.resemblances
+    own = estimate.table_top["silhouettes"]
+    np.testing.assert_allclose(own["centre"], plain.centre)
+    truth = ground_truth(spec, result.X_WO_end)
+    assert np.linalg.norm(estimate.centre - truth.centre) < 0.005
+    assert np.linalg.norm(np.asarray(own["centre"]) - truth.centre) > np.linalg.norm(estimate.centre - truth.centre)
+    assert estimate.extents[2] == pytest.approx(0.02, abs=0.004)  # not elongated: (sides, across, up)
+    u = estimate.table_top["uncertainty"]
+    assert 0 < u["centre"] < 0.01 and estimate.table_top["views"] >= 8
+    assert dc.asdict(config.table_top)["cell"] == 0.003

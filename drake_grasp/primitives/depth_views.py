@@ -153,4 +153,5 @@ def table_top_vector(maps: tuple[table_top.HeightMap, table_top.HeightMap], view
     both = first.merged(second)
     whole = table_top.estimate(both, min_cells)
     halves = [table_top.estimate(m, min_cells) for m in maps]
-    return TableTopVector(whole, table_top.spread(*halves, both.cell), both.clipped, views)
+    bracket = 0.0 if whole is None else whole.centre_bracket
+    return TableTopVector(whole, table_top.spread(*halves, both.cell, bracket), both.clipped, views)

@@ -84,6 +84,16 @@ class ObjectEstimate:
             return None
         return max(SHAPES, key=lambda s: self.resemblances.get(s, 0.0))
 
+    @property
+    def resemblance_margin(self) -> float:
+        """How far the highest resemblance stands above the next one (in [0, 1]; NaN without
+        resemblances). A small margin says that no primitive clearly fits: the choice between the
+        two grasps was close (docs/design.md, "When nothing fits")."""
+        values = sorted((float(self.resemblances.get(s, math.nan)) for s in SHAPES), reverse=True)
+        if not self.resemblances or not all(math.isfinite(v) for v in values):
+            return math.nan
+        return values[0] - values[1]
+
     def problem(self) -> str:
         """Why this estimate cannot place a grasp ("" if it can): the object was not found; it was seen
         but never gave a usable silhouette; or a value the grasps and the decision use (centre, axes,

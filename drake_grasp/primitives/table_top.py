@@ -20,8 +20,11 @@ depth). It is exact for prisms lying on a face (plates, T and L shapes, boxes) a
 hangs over the table (the lower half of a ball, the space under a handle). From it (`estimate`):
 
 * centre: horizontally, the solid's centroid (the centre of mass of a prism; of any shape without
-  overhang); vertically, half the top height (exact for any shape symmetric about its mid-plane,
-  where the column solid's own centroid would sit 15 % of a ball's radius too low);
+  overhang). Vertically, two models bracket the centre of mass of a resting object: the solid's own
+  centroid is right for a shape without overhang and too low under one (15 % of a ball's radius),
+  half the top height is right for a shape symmetric about its mid-plane and too high for one whose
+  mass sits low (a blob resting on its flat side: 9 mm on a 12 cm one). The estimate takes the middle
+  of the two, and half their distance counts in its uncertainty;
 * principal axis: the solid's axis of least inertia (its longest direction, in 3-D: a tilted object
   gives a tilted axis);
 * horizontal sides: the smallest-area rectangle around the footprint (`min_area_rectangle`), for the
@@ -168,6 +171,8 @@ class TableTopEstimate:
         extents_sides: spans along (sides, horizontal across them, up).
         height: the highest point's height above the table.
         cells: occupied cells.
+        centre_bracket: half the distance between the two vertical centres (the solid's centroid and
+            half the height), m: the vertical centre's model uncertainty.
     """
 
     centre: np.ndarray
@@ -177,6 +182,7 @@ class TableTopEstimate:
     extents_sides: np.ndarray
     height: float
     cells: int
+    centre_bracket: float = 0.0
 
 
 def min_area_rectangle(points_xy: np.ndarray) -> tuple[float, np.ndarray]:
@@ -233,11 +239,13 @@ def estimate(height_map: HeightMap, min_cells: int = 3) -> TableTopEstimate | No
     corners = _column_ends(xy, h, height_map.table_height)
     across = np.cross(_UP, axis)
     across = across / np.linalg.norm(across) if np.linalg.norm(across) > 1e-9 else np.cross(_UP, sides)
-    centre = np.array([centroid_xy[0], centroid_xy[1], height_map.table_height + top / 2.0])
+    z_low, z_high = sorted((z_mean, top / 2.0))  # the solid's centroid, half the height (above the table)
+    centre = np.array([centroid_xy[0], centroid_xy[1], height_map.table_height + 0.5 * (z_low + z_high)])
     return TableTopEstimate(
         centre=centre, principal_axis=axis, sides=sides,
         extents_axis=_spans(corners, (axis, across, np.cross(axis, across))),
-        extents_sides=_spans(corners, (sides, np.cross(_UP, sides), _UP)), height=top, cells=len(h))
+        extents_sides=_spans(corners, (sides, np.cross(_UP, sides), _UP)), height=top, cells=len(h),
+        centre_bracket=0.5 * (z_high - z_low))
 
 
 def _column_ends(xy: np.ndarray, h: np.ndarray, table_height: float) -> np.ndarray:
@@ -265,13 +273,16 @@ class Spread:
     extents: np.ndarray
 
 
-def spread(first: TableTopEstimate | None, second: TableTopEstimate | None, cell: float) -> Spread | None:
+def spread(first: TableTopEstimate | None, second: TableTopEstimate | None, cell: float,
+           centre_bracket: float = 0.0) -> Spread | None:
     """The halves' disagreement (None if either half has no estimate); the grid's quantisation, a
-    cell / √12 per coordinate, is added in quadrature."""
+    cell / √12 per coordinate, and the vertical centre's model bracket (`TableTopEstimate.centre_bracket`,
+    m) are added in quadrature."""
     if first is None or second is None:
         return None
     q = cell / math.sqrt(12.0)
-    centre = math.hypot(0.5 * float(np.linalg.norm(first.centre - second.centre)), math.sqrt(3.0) * q)
+    centre = math.sqrt((0.5 * float(np.linalg.norm(first.centre - second.centre))) ** 2 + 3.0 * q * q
+                       + centre_bracket ** 2)
     cosine = min(1.0, abs(float(first.principal_axis @ second.principal_axis)))
     extents = np.hypot(0.5 * np.abs(first.extents_axis - second.extents_axis), q)
     return Spread(centre, 0.5 * math.degrees(math.acos(cosine)), extents)

@@ -87,6 +87,7 @@ def _compliant_record(trial: Assembled) -> TrialRecord:
         record.resemblances = dict(estimate.resemblances)
         record.estimate = {k: v for k, v in estimate.to_dict().items() if k not in ("evidence", "timings")}
         record.estimate["decided_at"] = decision.time
+        record.estimate["resemblance_margin"] = estimate.resemblance_margin
         if estimate.found and run.X_WO_decision is not None:
             errors = compare(estimate, ground_truth(spec, run.X_WO_decision))
             record.estimate_errors = {
