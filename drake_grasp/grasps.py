@@ -1,4 +1,5 @@
-"""The three compliant grasps of the paper: a compliance mode plus a hand pose, from an object estimate.
+"""The compliant grasps: a compliance mode plus a hand pose, from an object estimate (the paper's three,
+and the precision grasp of its future work).
 
 A *compliant grasp* (paper, Sec. 2) = a hand pose (where the palm goes, and from which direction it
 comes) + a compliance mode (the pre-grasp hand shape and torque close with breakaway). The pose is
@@ -11,6 +12,13 @@ model and no contact planning: the hand's compliance does the rest.
 * **cylindrical grasp**: cylindrical mode; the hand is centred on the principal axis, its fingers
   closing perpendicular to it; it approaches perpendicular to the axis, from as high above as the
   axis allows, until contact.
+* **precision grasp** (the paper's future work: the "flower", small and flat objects): cylindrical
+  mode, palm level above the object's centre, the fingers closing across the shorter side of its
+  footprint, and the palm as low as the table lets it go: the fingertips' deepest sweep passes
+  `PRECISION_CLEARANCE` above the table, where they move almost level (the tip travels 4 cm inward
+  while it rises 2 mm), so that they meet a thin object at its foot and close along the table. The
+  table is the environmental constraint that guides the fingertips (Eppner et al., "Exploitation of
+  environmental constraints in human and robotic grasping", IJRR 2015).
 * **box grasp**: cylindrical mode; the hand is aligned with the box's axes: it approaches along the
   box axis closest to the vertical (onto the top face), and its fingers close across the shorter side
   of that face. A face wider than the fingers' knuckles are apart would catch the open proximal links
@@ -45,6 +53,9 @@ _KNUCKLE_BEHIND_PALM = hand.PALM_HEIGHT - hand.DW
 _KNUCKLE_SPACING_HALF = hand.A1
 # Fingertips pass this far above the table at the bottom of their sweep (a choice), m.
 TABLE_CLEARANCE = 0.005
+# The precision grasp's fingertips pass this far above the table at the bottom of their sweep (a
+# choice: below the middle of a 6 mm plate, above the table's contact margin), m.
+PRECISION_CLEARANCE = 0.002
 # Approaches within this angle of the vertical are "from above" for the table clearance.
 _FROM_ABOVE = math.radians(45.0)
 
@@ -53,13 +64,15 @@ class GraspType(enum.Enum):
     SPHERICAL = "spherical"
     CYLINDRICAL = "cylindrical"
     BOX = "box"
+    PRECISION = "precision"
 
     @classmethod
     def parse(cls, name: str) -> "GraspType":
         try:
             return cls(name.strip().lower())
         except ValueError:
-            raise ValueError(f"unknown grasp '{name}' (choose from spherical, cylindrical, box)") from None
+            choices = ", ".join(g.value for g in cls)
+            raise ValueError(f"unknown grasp '{name}' (choose from {choices})") from None
 
 
 @dataclasses.dataclass(frozen=True)
@@ -194,15 +207,39 @@ def box_grasp(estimate: ObjectEstimate) -> GraspPlan:
     return GraspPlan(GraspType.BOX, spread, RigidTransform(R_WP, target))
 
 
+def precision_grasp(estimate: ObjectEstimate) -> GraspPlan:
+    """Cylindrical mode, fingertips along the table: for thin, flat and small objects (module docstring).
+
+    The palm faces down above the object's centre, its fingers closing across the shorter horizontal
+    side, at the height where the fingertips' deepest sweep passes `PRECISION_CLEARANCE` above the
+    table (`hand.fingertip_sweep_depth`), whatever the object's height: the fingertips meet it at its
+    foot. The approach still stops on contact (an object taller than that sweep stops the palm on
+    its top).
+    """
+    R = np.asarray(estimate.R_WB, float)
+    size = np.asarray(estimate.size, float)
+    up = int(np.argmax(np.abs(R[2, :])))
+    others = [i for i in range(3) if i != up]
+    long_axis = max(others, key=lambda i: size[i])
+    R_WP = _palm_rotation(_DOWN, R[:, long_axis])  # fingers close along the short side
+    spread = ComplianceMode.CYLINDRICAL.spread
+    table_z = float(np.asarray(estimate.center)[2]) - estimate.half_extent_along(_DOWN)
+    palm_z = table_z + hand.fingertip_sweep_depth(spread) + PRECISION_CLEARANCE
+    target = np.array([estimate.center[0], estimate.center[1], palm_z], float)
+    return GraspPlan(GraspType.PRECISION, spread, RigidTransform(R_WP, target))
+
+
 COMPLIANT_GRASPS = {
     GraspType.SPHERICAL: spherical_grasp,
     GraspType.CYLINDRICAL: cylindrical_grasp,
     GraspType.BOX: box_grasp,
+    GraspType.PRECISION: precision_grasp,
 }
 
 
 # The compliant grasp for each primitive shape (the decision: the grasp of the most resembling shape).
-GRASP_OF_SHAPE = {"sphere": GraspType.SPHERICAL.value, "cylinder": GraspType.CYLINDRICAL.value, "box": GraspType.BOX.value}
+GRASP_OF_SHAPE = {"sphere": GraspType.SPHERICAL.value, "cylinder": GraspType.CYLINDRICAL.value, "box": GraspType.BOX.value,
+                  "flat": GraspType.PRECISION.value}
 
 
 def plan_compliant_grasp(grasp: GraspType | str, estimate: ObjectEstimate) -> GraspPlan:

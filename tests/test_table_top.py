@@ -123,6 +123,19 @@ def test_too_few_cells_give_no_estimate_and_the_halves_give_a_spread():
     assert table_top.spread(a, None, 0.003) is None
 
 
+def test_the_flat_resemblance_is_thin_or_small():
+    from drake_grasp.primitives.flat import flat_resemblance
+
+    plate, evidence = flat_resemblance(0.008, np.array([0.10, 0.07, 0.008]))
+    assert plate > 0.95 and evidence["thin"] == plate
+    ball, evidence = flat_resemblance(0.05, np.array([0.05, 0.05, 0.05]))
+    assert ball > 0.9 and evidence["thin"] < 0.01
+    sponge, _ = flat_resemblance(0.035, np.array([0.11, 0.07, 0.035]))  # the paper's: not flat
+    apple, _ = flat_resemblance(0.072, np.array([0.075, 0.075, 0.072]))
+    assert sponge < 0.1 and apple < 0.4
+    assert math.isnan(flat_resemblance(math.nan, np.zeros(3))[0])
+
+
 def test_min_area_rectangle_of_a_rotated_rectangle():
     angle = math.radians(20)
     corners = np.array([[0, 0], [0.1, 0], [0.1, 0.03], [0, 0.03]])
@@ -150,7 +163,9 @@ def test_the_estimate_takes_the_table_top_centre_axes_and_extents():
     np.testing.assert_allclose(estimate.extents, t.extents_axis)
     assert estimate.table_top["views"] == 24
     np.testing.assert_allclose(estimate.table_top["silhouettes"]["centre"], [0.5, 0.0, 0.02])
-    assert estimate.resemblances == silhouettes.resemblances
+    assert {s: estimate.resemblances[s] for s in silhouettes.resemblances} == silhouettes.resemblances
+    # 4 cm tall and 12 cm long: neither thin nor small, so the flat resemblance stays low.
+    assert estimate.resemblances["flat"] < 0.1 and estimate.best_shape == "box"
 
 
 def test_a_short_exploration_with_depth_views_places_an_L_by_its_mass(tmp_path):
@@ -180,7 +195,8 @@ def test_a_short_exploration_with_depth_views_places_an_L_by_its_mass(tmp_path):
     config.table_top = load_scenario(scenario_name="table_top").perception.table_top
     result = explore(scenario, config, spec)
     estimate = result.estimate
-    assert estimate.resemblances == plain.resemblances
+    assert {s: estimate.resemblances[s] for s in plain.resemblances} == plain.resemblances
+    assert estimate.resemblances["flat"] > 0.9 and estimate.best_shape == "flat"  # 2 cm thick: thin
     own = estimate.table_top["silhouettes"]
     np.testing.assert_allclose(own["centre"], plain.centre)
     truth = ground_truth(spec, result.X_WO_end)

@@ -50,8 +50,9 @@ def add_trial(sub) -> None:
     trial.add_argument("--method", choices=["compliant", "eigengrasp"], default="compliant",
                        help="compliant (default): explore with the wrist camera, pick the grasp of the most "
                        "resembling shape, execute it, all in one simulation; eigengrasp: see below")
-    trial.add_argument("--grasp", choices=["spherical", "cylindrical", "box"],
-                       help="force this compliant grasp instead of the algorithm's choice")
+    trial.add_argument("--grasp", choices=["spherical", "cylindrical", "box", "precision"],
+                       help="force this compliant grasp instead of the algorithm's choice (precision: "
+                       "fingertips closing along the table, for thin, flat and small objects)")
     trial.add_argument("--oracle", action="store_true",
                        help="skip the camera: compute the grasp (--grasp) from the object's true pose and size")
     trial.add_argument("--estimate-error", metavar="KEY=VALUE,...",

@@ -22,9 +22,14 @@ from pydrake.systems.framework import Context, LeafSystem
 
 from drake_grasp.primitives.depth_views import TableTopVector
 from drake_grasp.primitives.estimators import is_upright
+from drake_grasp.primitives.flat import flat_resemblance
 from drake_grasp.primitives.scores import SHAPES
 from drake_grasp.primitives.sequencer import ExplorationPhase, phase_value
 from drake_grasp.primitives.silhouette import CameraSample
+
+# What the decision chooses among: the paper's three shapes, and "flat" (the precision grasp) when the
+# table-top estimate measured the object's height and footprint.
+CHOICES = SHAPES + ("flat",)
 
 OBJECT_NOT_FOUND = "object not found"
 # The object was seen, but the estimate cannot place a grasp (`ObjectEstimate.problem` says why).
@@ -79,18 +84,22 @@ class ObjectEstimate:
 
     @property
     def best_shape(self) -> str | None:
-        """The shape with the highest resemblance (the compliant grasp to execute), or None."""
+        """The shape with the highest resemblance (the compliant grasp to execute), or None: one of
+        the paper's three, or "flat" where the table-top estimate measured flatness (`primitives.flat`)."""
         if not self.resemblances:
             return None
-        return max(SHAPES, key=lambda s: self.resemblances.get(s, 0.0))
+        return max(CHOICES, key=lambda s: self.resemblances.get(s, -1.0))
 
     @property
     def resemblance_margin(self) -> float:
         """How far the highest resemblance stands above the next one (in [0, 1]; NaN without
         resemblances). A small margin says that no primitive clearly fits: the choice between the
         two grasps was close (docs/design.md, "When nothing fits")."""
-        values = sorted((float(self.resemblances.get(s, math.nan)) for s in SHAPES), reverse=True)
-        if not self.resemblances or not all(math.isfinite(v) for v in values):
+        if not self.resemblances:
+            return math.nan
+        values = sorted((float(self.resemblances.get(s, math.nan)) for s in CHOICES if s in self.resemblances),
+                        reverse=True)
+        if not all(math.isfinite(v) for v in values):
             return math.nan
         return values[0] - values[1]
 
@@ -223,8 +232,9 @@ def gather_estimate(phase: ExplorationPhase, centre: np.ndarray, camera_position
     (`upright_axes`): its sides, along which its extents were measured.
 
     With a table-top estimate (`table_top`, a `depth_views.TableTopVector` that holds one), its centre,
-    axes and extents replace the silhouettes' (`with_table_top`); whether the object is elongated,
-    and the resemblances, stay the silhouettes'.
+    axes and extents replace the silhouettes' (`with_table_top`), and the flat resemblance joins the
+    three (`primitives.flat`); whether the object is elongated, and the three resemblances, stay the
+    silhouettes'.
     """
     no_centre = not np.all(np.isfinite(centre))
     if phase == ExplorationPhase.NOT_FOUND or (no_centre and not phase.finished):
@@ -278,10 +288,13 @@ def with_table_top(estimate: ObjectEstimate, table_top, elongated: bool) -> Obje
                                                "extents": [float(x) for x in spread.extents]}
     silhouettes = {"centre": estimate.centre, "principal_axis": estimate.principal_axis, "axes": estimate.axes,
                    "extents": estimate.extents}
+    flat, flat_evidence = flat_resemblance(float(t.height), spans_sides)
     centre = np.asarray(t.centre, float).copy()
     return dataclasses.replace(
         estimate, centre=centre, depth=float(np.linalg.norm(centre - estimate.camera_position)), axes=axes,
         principal_axis=principal_axis, extents=extents,
+        resemblances={**estimate.resemblances, "flat": flat},
+        evidence={**estimate.evidence, **flat_evidence},
         table_top={"views": table_top.views, "cells": t.cells, "clipped": table_top.clipped,
                    "uncertainty": uncertainty, "silhouettes": silhouettes})
 
