@@ -13,8 +13,10 @@ from drake_grasp.grasps import (
     ObjectEstimate,
     box_grasp,
     cylindrical_grasp,
+    PRECISION_CLEARANCE,
     oracle_estimate,
     planned_grasp,
+    precision_grasp,
     spherical_grasp,
 )
 from drake_grasp.hand import ComplianceMode
@@ -79,6 +81,27 @@ def test_from_above_the_closing_fingertips_pass_over_the_table(grasp):
         (X_WH @ hand.distal_points_in_base(f, plan.spread, p, p / 3, corners).T)[2].min()
         for f in (1, 2, 3) for p in np.linspace(0, hand.PROXIMAL_LIMITS[1], 141))
     assert TABLE_CLEARANCE - 1e-6 <= lowest <= TABLE_CLEARANCE + 1e-3
+
+
+def _lowest_fingertip(plan):
+    X_WH = plan.X_WP_target @ RigidTransform([0, 0, -hand.PALM_HEIGHT])
+    corners = [[hand.A3, y, z] for y in (-hand.D3, hand.D3) for z in (-0.0125, 0.0125)]
+    return min((X_WH @ hand.distal_points_in_base(f, plan.spread, p, p / 3, corners).T)[2].min()
+               for f in (1, 2, 3) for p in np.linspace(0, hand.PROXIMAL_LIMITS[1], 141))
+
+
+@pytest.mark.parametrize("height", [0.008, 0.02, 0.06])
+def test_precision_grasp_sweeps_the_fingertips_along_the_table(height):
+    """Whatever the object's height, the fingertips' deepest sweep passes the precision clearance
+    above the table (2 mm), the palm above the centre, fingers across the short side."""
+    yaw = math.radians(20)
+    plan = precision_grasp(_estimate([0.5, 0.05, height / 2], [0.10, 0.06, height], yaw=yaw))
+    assert plan.grasp == GraspType.PRECISION and plan.spread == ComplianceMode.CYLINDRICAL.spread
+    assert PRECISION_CLEARANCE - 1e-6 <= _lowest_fingertip(plan) <= PRECISION_CLEARANCE + 1e-3
+    np.testing.assert_allclose(plan.X_WP_target.translation()[:2], [0.5, 0.05])
+    np.testing.assert_allclose(np.abs(plan.X_WP_target.rotation().col(0) @ [math.cos(yaw), math.sin(yaw), 0]), 1.0)
+    np.testing.assert_allclose(plan.X_WP_target.rotation().col(2), [0, 0, -1], atol=1e-12)
+    assert GraspType.parse("Precision") == GraspType.PRECISION
 
 
 def test_oracle_estimate_is_the_ground_truth():

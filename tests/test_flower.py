@@ -1,0 +1,25 @@
+"""The flower's generator: seeded, closed, and within the sizes of its classes."""
+
+import numpy as np
+
+from drake_grasp.objects import flower
+
+
+def test_the_flower_generator_is_seeded_and_its_objects_are_the_named_sizes(tmp_path):
+    rows = flower.generate(12, 3, tmp_path)
+    assert [r["class"] for r in rows] == list(flower.CLASSES) * 2
+    again = flower.flower_object(3, 7)
+    assert (tmp_path / rows[7]["file"]).read_text().count("\nv ") == len(again.mesh.vertices)
+    for index in range(12):
+        obj = flower.flower_object(3, index)
+        assert obj.mesh.is_watertight and obj.mesh.volume > 0
+        low, mid, high = sorted(obj.mesh.extents)
+        if obj.shape_class == "plate":
+            assert 0.006 - 1e-6 <= low <= 0.012 + 1e-6 and high <= 0.12 + 1e-6
+        elif obj.shape_class in ("T", "L"):
+            assert 0.015 - 1e-6 <= low <= 0.025 + 1e-6
+        elif obj.shape_class == "stick":
+            assert 0.01 - 1e-6 <= low and mid <= 0.02 + 1e-6 and 0.06 - 1e-6 <= high <= 0.14 + 1e-6
+        else:  # ball, fruit
+            assert 0.04 - 1e-3 <= high <= 0.08 + 1e-3
+    np.testing.assert_array_equal(flower.flower_object(3, 4).mesh.vertices, flower.flower_object(3, 4).mesh.vertices)
