@@ -93,7 +93,8 @@ def summary_lines(records, shape_class, grasps, args) -> list[str]:
         if not ok:
             failures[(c, column)][r["failure"]] += 1
         if r["method"] == "compliant":
-            chosen[c][r.get("chosen_grasp") or "-"] += 1
+            extra = json.loads(r["extra"]) if isinstance(r.get("extra"), str) and r["extra"] else (r.get("extra") or {})
+            chosen[c][r.get("chosen_grasp") or extra.get("chosen") or "-"] += 1
     columns = list(grasps) + ([] if args.no_camera else ["camera"])
     classes = sorted({shape_class[r["object"]] for r in records})
 
