@@ -9,7 +9,6 @@ Run: .venv/bin/python scripts/estimate_check.py [--count 42] [--near 10] [--seed
      [--out out/estimates] [--report docs/results/estimates.md] [--skip-catalogue]
 """
 
-import argparse
 import pathlib
 import shutil
 import sys
@@ -17,17 +16,10 @@ import sys
 PROG = "estimate_check"
 
 
-class UsageError(ValueError):
-    pass
-
-
-class _Parser(argparse.ArgumentParser):
-    def error(self, message):  # one line, exit code 2
-        raise UsageError(message)
-
-
 def main(argv=None) -> int:
-    parser = _Parser(prog=PROG, description=__doc__.splitlines()[0])
+    from drake_grasp.cli.common import OneLineParser, UsageError
+
+    parser = OneLineParser(prog=PROG, description=__doc__.splitlines()[0])
     parser.add_argument("--count", type=int, default=42, help="novel objects (classes cycle; default 42)")
     parser.add_argument("--near", type=int, default=10, help="near-primitives per class (default 10)")
     parser.add_argument("--seed", type=int, default=7, help="the generators' seed (default 7)")

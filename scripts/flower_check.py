@@ -12,7 +12,6 @@ Run: .venv/bin/python scripts/flower_check.py [--count 12] [--seed 0] [--seeds 1
      [--out out/flower] [--report docs/results/flower.md] [--grasps precision,box] [--no-camera]
 """
 
-import argparse
 import collections
 import json
 import pathlib
@@ -23,17 +22,10 @@ PROG = "flower_check"
 GRASPS = ("spherical", "cylindrical", "box", "precision")
 
 
-class UsageError(ValueError):
-    pass
-
-
-class _Parser(argparse.ArgumentParser):
-    def error(self, message):  # one line, exit code 2
-        raise UsageError(message)
-
-
 def main(argv=None) -> int:
-    parser = _Parser(prog=PROG, description=__doc__.splitlines()[0])
+    from drake_grasp.cli.common import OneLineParser, UsageError
+
+    parser = OneLineParser(prog=PROG, description=__doc__.splitlines()[0])
     parser.add_argument("--count", type=int, default=12, help="objects (the six classes cycle; default 12)")
     parser.add_argument("--seed", type=int, default=0, help="the generator's seed (default 0)")
     parser.add_argument("--seeds", type=int, default=1, help="trial seeds per object and grasp (default 1)")

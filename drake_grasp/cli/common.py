@@ -13,6 +13,14 @@ class UsageError(ValueError):
     """Bad input from the command line: reported in one line, exit code 2."""
 
 
+class OneLineParser(argparse.ArgumentParser):
+    """An ArgumentParser whose errors raise UsageError (one line, for the caller to print and exit
+    with code 2) instead of printing the usage: for the scripts under scripts/."""
+
+    def error(self, message):
+        raise UsageError(message)
+
+
 def add_mesh_options(p: argparse.ArgumentParser) -> None:
     """--scale, --largest-component, --join-gap and --inertia, for every command that takes --object."""
     p.add_argument("--scale", type=float, default=1.0, metavar="S",
