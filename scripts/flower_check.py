@@ -104,17 +104,12 @@ def summary_lines(records, shape_class, grasps, args) -> list[str]:
              f"{args.seeds - 1}. Held / trials, 95 % Wilson intervals.", "",
              "| class | " + " | ".join(columns) + " | camera chose |",
              "|---|" + "---:|" * len(columns) + "---|"]
+    for col in columns:
+        held[("all", col)] = [sum(held[(c, col)][i] for c in classes) for i in (0, 1)]
+    chosen["all"] = sum((chosen[c] for c in classes), collections.Counter())
     for c in classes + ["all"]:
-        keys = [(c, col) for col in columns] if c != "all" else None
-        if c == "all":
-            for col in columns:
-                held[("all", col)] = [sum(held[(k, col)][0] for k in classes), sum(held[(k, col)][1] for k in classes)]
-            keys = [("all", col) for col in columns]
-            choice = sum((chosen[k] for k in classes), collections.Counter())
-        else:
-            choice = chosen[c]
-        lines.append(f"| {c} | " + " | ".join(cell(k) for k in keys) + " | "
-                     + ", ".join(f"{g} {n}" for g, n in sorted(choice.items())) + " |")
+        lines.append(f"| {c} | " + " | ".join(cell((c, col)) for col in columns) + " | "
+                     + ", ".join(f"{g} {n}" for g, n in sorted(chosen[c].items())) + " |")
     lines += ["", "Failures: " + "; ".join(f"{c} {col}: " + ", ".join(f"{f} {n}" for f, n in counts.items())
                                           for (c, col), counts in sorted(failures.items())) or "none"]
     return lines

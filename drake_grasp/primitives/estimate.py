@@ -94,7 +94,7 @@ class ObjectEstimate:
     def resemblance_margin(self) -> float:
         """How far the highest resemblance stands above the next one (in [0, 1]; NaN without
         resemblances). A small margin says that no primitive clearly fits: the choice between the
-        two grasps was close (docs/design.md, "When nothing fits")."""
+        two grasps was close."""
         if not self.resemblances:
             return math.nan
         values = sorted((float(self.resemblances.get(s, math.nan)) for s in CHOICES if s in self.resemblances),

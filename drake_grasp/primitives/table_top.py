@@ -211,8 +211,8 @@ def min_area_rectangle(points_xy: np.ndarray) -> tuple[float, np.ndarray]:
     return float(np.mod(angle, math.pi)), np.array([su, sv])
 
 
-def _spans(corners: np.ndarray, directions) -> np.ndarray:
-    return np.array([np.ptp(corners @ d) for d in directions])
+def _spans(points: np.ndarray, directions) -> np.ndarray:
+    return np.array([np.ptp(points @ d) for d in directions])
 
 
 def estimate(height_map: HeightMap, min_cells: int = 3) -> TableTopEstimate | None:
@@ -236,15 +236,15 @@ def estimate(height_map: HeightMap, min_cells: int = 3) -> TableTopEstimate | No
     axis = axis * np.sign(axis[np.argmax(np.abs(axis))])
     angle, _ = min_area_rectangle(xy)
     sides = np.array([math.cos(angle), math.sin(angle), 0.0])
-    corners = _column_ends(xy, h, height_map.table_height)
+    ends = _column_ends(xy, h, height_map.table_height)
     across = np.cross(_UP, axis)
     across = across / np.linalg.norm(across) if np.linalg.norm(across) > 1e-9 else np.cross(_UP, sides)
     z_low, z_high = sorted((z_mean, top / 2.0))  # the solid's centroid, half the height (above the table)
     centre = np.array([centroid_xy[0], centroid_xy[1], height_map.table_height + 0.5 * (z_low + z_high)])
     return TableTopEstimate(
         centre=centre, principal_axis=axis, sides=sides,
-        extents_axis=_spans(corners, (axis, across, np.cross(axis, across))),
-        extents_sides=_spans(corners, (sides, np.cross(_UP, sides), _UP)), height=top, cells=len(h),
+        extents_axis=_spans(ends, (axis, across, np.cross(axis, across))),
+        extents_sides=_spans(ends, (sides, np.cross(_UP, sides), _UP)), height=top, cells=len(h),
         centre_bracket=0.5 * (z_high - z_low))
 
 
