@@ -20,16 +20,13 @@ import numpy as np
 from pydrake.common.value import AbstractValue
 from pydrake.systems.framework import Context, LeafSystem
 
+from drake_grasp.primitives.decision import choose_shape, decision_margin
 from drake_grasp.primitives.depth_views import TableTopVector
 from drake_grasp.primitives.estimators import is_upright
 from drake_grasp.primitives.flat import flat_resemblance
 from drake_grasp.primitives.scores import SHAPES
 from drake_grasp.primitives.sequencer import ExplorationPhase, phase_value
 from drake_grasp.primitives.silhouette import CameraSample
-
-# What the decision chooses among: the paper's three shapes, and "flat" (the precision grasp) when the
-# table-top estimate measured the object's height and footprint.
-CHOICES = SHAPES + ("flat",)
 
 OBJECT_NOT_FOUND = "object not found"
 # The object was seen, but the estimate cannot place a grasp (`ObjectEstimate.problem` says why).
@@ -84,24 +81,16 @@ class ObjectEstimate:
 
     @property
     def best_shape(self) -> str | None:
-        """The shape with the highest resemblance (the compliant grasp to execute), or None: one of
-        the paper's three, or "flat" where the table-top estimate measured flatness (`primitives.flat`)."""
-        if not self.resemblances:
-            return None
-        return max(CHOICES, key=lambda s: self.resemblances.get(s, -1.0))
+        """The chosen shape (the compliant grasp to execute), or None: one of the paper's three, or
+        "flat" where the table-top estimate measured flatness (`primitives.decision`)."""
+        return choose_shape(self.resemblances)
 
     @property
     def resemblance_margin(self) -> float:
-        """How far the highest resemblance stands above the next one (in [0, 1]; NaN without
-        resemblances). A small margin says that no primitive clearly fits: the choice between the
-        two grasps was close."""
-        if not self.resemblances:
-            return math.nan
-        values = sorted((float(self.resemblances.get(s, math.nan)) for s in CHOICES if s in self.resemblances),
-                        reverse=True)
-        if not all(math.isfinite(v) for v in values):
-            return math.nan
-        return values[0] - values[1]
+        """How clear the choice was (in [0, 1]; NaN without resemblances): the best resemblance's lead
+        over the next, bounded by the flat resemblance's distance from its threshold when there is one
+        (`primitives.decision`). A small margin says that no primitive clearly fits."""
+        return decision_margin(self.resemblances)
 
     def problem(self) -> str:
         """Why this estimate cannot place a grasp ("" if it can): the object was not found; it was seen

@@ -30,7 +30,10 @@ from drake_grasp.sweeps.results import axis_label, save_figure
 from drake_grasp.sweeps.stats import error_bars, format_rate, short_rate
 
 GRASPS = ("spherical", "cylindrical", "box")
-RESEMBLANCE_OF = {"spherical": "sphere", "cylindrical": "cylinder", "box": "box"}
+# With the table-top estimate (a scenario's perception.table_top) the decision has a fourth choice, the
+# precision grasp of flat objects (`primitives.decision`): the sweep then runs it too.
+FLOWER_GRASPS = GRASPS + ("precision",)
+RESEMBLANCE_OF = {"spherical": "sphere", "cylindrical": "cylinder", "box": "box", "precision": "flat"}
 PAPER_CHOSEN_SUCCESS = (86, 90)  # the paper's Fig. 6: 95.6 % for the grasps the algorithm chose
 QUICK_OBJECTS = ("apple", "sponge", "soccer_ball", "bottle_case")
 
@@ -69,12 +72,22 @@ class Fig6Config:
             raise ValueError("fig6: no objects")
 
 
+def sweep_grasps(scenario_file: str = "", scenario_name: str = "default") -> tuple[str, ...]:
+    """The grasps a sweep runs under a scenario: the paper's three, and the precision grasp where the
+    scenario's perception measures flatness (its table-top estimate)."""
+    from drake_grasp.station import DEFAULT_SCENARIO_FILE, load_scenario
+
+    scenario = load_scenario(scenario_file or DEFAULT_SCENARIO_FILE, scenario_name)
+    return FLOWER_GRASPS if scenario.perception.table_top is not None else GRASPS
+
+
 def trial_specs(config: Fig6Config, scenario_file: str = "", scenario_name: str = "default"):
     """The sweep as plain TrialSpecs."""
     from drake_grasp.sweeps.runner import TrialSpec
 
+    grasps = sweep_grasps(scenario_file, scenario_name)
     return [TrialSpec(o, config.method, g, config.seed + i, scenario_file, scenario_name, **config.object_options(o))
-            for o in config.objects for g in GRASPS for i in range(config.trials)]
+            for o in config.objects for g in grasps for i in range(config.trials)]
 
 
 @dataclasses.dataclass
@@ -96,11 +109,13 @@ def _resemblance(row: dict, grasp: str) -> float:
 
 
 def grasp_stats(rows: list[dict], objects) -> dict[str, dict[str, GraspStats]]:
-    """Per object and grasp: trials, successes, mean resemblance."""
+    """Per object and grasp: trials, successes, mean resemblance (the paper's three grasps, and the
+    precision grasp where the rows have it)."""
+    grasps = FLOWER_GRASPS if any(r["grasp"] == "precision" for r in rows) else GRASPS
     out = {}
     for o in objects:
         out[o] = {}
-        for g in GRASPS:
+        for g in grasps:
             mine = [r for r in rows if r["object"] == o and r["grasp"] == g]
             res = [_resemblance(r, g) for r in mine]
             res = [x for x in res if np.isfinite(x)]
@@ -112,13 +127,17 @@ def grasp_stats(rows: list[dict], objects) -> dict[str, dict[str, GraspStats]]:
 
 
 def chosen_grasp(stats: dict[str, GraspStats]) -> str | None:
-    """The algorithm's choice for an object: the grasp with the highest mean resemblance.
+    """The algorithm's choice for an object: the decision (`primitives.decision`) on its mean
+    resemblances, the paper's highest one unless the precision grasp's flat resemblance decides first.
 
     Oracle trials measure no resemblance: their choice is the grasp of the object's true class.
     """
-    measured = {g: s.resemblance for g, s in stats.items() if np.isfinite(s.resemblance)}
+    from drake_grasp.primitives.decision import choose_shape
+
+    measured = {RESEMBLANCE_OF[g]: s.resemblance for g, s in stats.items() if np.isfinite(s.resemblance)}
     if measured:
-        return max(measured, key=measured.get)
+        shape = choose_shape(measured)
+        return next(g for g, r in RESEMBLANCE_OF.items() if r == shape)
     for g, s in stats.items():
         if s.truth_class is not None and RESEMBLANCE_OF[g] == s.truth_class:
             return g
@@ -150,7 +169,7 @@ def plot(stats: dict[str, dict[str, GraspStats]], out_dir: pathlib.Path) -> list
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    colours = {"spherical": "tab:red", "cylindrical": "tab:blue", "box": "tab:green"}
+    colours = {"spherical": "tab:red", "cylindrical": "tab:blue", "box": "tab:green", "precision": "tab:purple"}
     fig, (ax, bars) = plt.subplots(2, 1, figsize=(1.3 * len(stats) + 3.5, 7.0), sharex=True,
                                    gridspec_kw={"height_ratios": [3, 2]})
     for x, (o, per_grasp) in enumerate(stats.items()):

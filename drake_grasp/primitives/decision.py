@@ -1,0 +1,58 @@
+"""The decision: which primitive shape, hence which compliant grasp, the resemblances choose.
+
+The paper's rule is an argmax: execute the compliant grasp of the most resembling shape (sphere,
+cylinder or box; paper Sec. 3). A fourth resemblance, "flat" (`primitives.flat`, from the table-top
+estimate), cannot join that argmax as an equal: the box resemblance measures how much the
+silhouette's area changes under the camera's arcs, and a flat object's area changes most of all, so
+the box resemblance saturates (1.0) on every plate, flat T and stick measured (docs/results/flower.md).
+Flatness is not a likeness of silhouettes but a measured size (height and largest extent above a
+known table), so it decides first:
+
+1. **flat** when the flat resemblance is at least `FLAT_THRESHOLD` (1/2: the object is thinner than
+   2.5 cm or smaller than 7 cm, the middle of its logistic steps);
+2. otherwise the paper's argmax over sphere, cylinder and box.
+
+The *margin* says how clear the decision was, in [0, 1]: in step 2, the lead of the best resemblance
+over the next; a flat resemblance near its threshold makes any decision close, so its own distance
+from the threshold, 2 |flat - 1/2|, bounds the margin from above. Without a flat resemblance (the
+paper's perception), both are the paper's argmax and its lead.
+"""
+
+import math
+
+from drake_grasp.primitives.scores import SHAPES
+
+FLAT = "flat"
+CHOICES = SHAPES + (FLAT,)
+FLAT_THRESHOLD = 0.5
+
+
+def _value(resemblances: dict, shape: str) -> float:
+    value = resemblances.get(shape)
+    return math.nan if value is None else float(value)
+
+
+def choose_shape(resemblances: dict) -> str | None:
+    """The chosen shape (one of `CHOICES`) for resemblances {shape: value in [0, 1]}, or None when there
+    are none. A missing or NaN flat resemblance leaves the paper's argmax."""
+    if not resemblances:
+        return None
+    flat = _value(resemblances, FLAT)
+    if math.isfinite(flat) and flat >= FLAT_THRESHOLD:
+        return FLAT
+    return max(SHAPES, key=lambda s: resemblances.get(s, -1.0))
+
+
+def decision_margin(resemblances: dict) -> float:
+    """How clear the decision was, in [0, 1] (module docstring); NaN without finite resemblances."""
+    values = sorted((_value(resemblances, s) for s in SHAPES if s in resemblances), reverse=True)
+    if len(values) < 2 or not all(math.isfinite(v) for v in values):
+        return math.nan
+    lead = values[0] - values[1]
+    if FLAT not in resemblances:
+        return lead
+    flat = _value(resemblances, FLAT)
+    if not math.isfinite(flat):
+        return math.nan
+    flat_margin = 2.0 * abs(flat - FLAT_THRESHOLD)
+    return flat_margin if flat >= FLAT_THRESHOLD else min(lead, flat_margin)
