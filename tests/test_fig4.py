@@ -13,13 +13,13 @@ from drake_grasp.sweeps.results import ResultsTable
 
 
 def _small():
-    return fig4.Fig4Config(sizes=[0.06, 0.14, 0.30], errors=[-0.03, 0.0, 0.03])
+    return fig4.Fig4Config(sizes=[0.06, 0.14, 0.30], errors=[-0.03, 0.0, 0.03], thicknesses=[0.006, 0.02])
 
 
 def test_small_sweep_writes_rows_and_figures_and_resumes(tmp_path):
     config = _small()
     rows = fig4.run_fig4(config, tmp_path, workers=1)
-    assert len(rows) == 3 * 3 * 2 * 3
+    assert len(rows) == (3 * 3 + 2) * 2 * 3
     summaries = fig4.summarise(rows)
     paths = fig4.plot(summaries, tmp_path)
     assert all(p.exists() and p.stat().st_size > 1000 for p in paths)
@@ -27,6 +27,12 @@ def test_small_sweep_writes_rows_and_figures_and_resumes(tmp_path):
     sphere = summaries["sphere"]
     assert sphere.at_zero("x")[1] > 0.05
     assert sphere.at_zero("x")[2] < sphere.at_zero("x")[1]
+    # The flower: the precision grasp's tilted pads pass over a 6 mm plate; a 2 cm one is held dead centre.
+    plate = summaries["plate"]
+    assert np.all(plate.epsilon["x"][:, 0] == 0) and np.all(plate.epsilon["y"][:, 0] == 0)
+    assert plate.at_zero("y")[1] > 0.02
+    assert any(line.startswith("plates (precision grasp): eps = 0 for every error below 20 mm")
+               for line in fig4.summary_lines(summaries, rows))
 
     # Interrupt: drop the last 5 rows and tear the line before them, as kill -9 mid-write would.
     csv_path = tmp_path / "fig4.csv"
@@ -37,7 +43,7 @@ def test_small_sweep_writes_rows_and_figures_and_resumes(tmp_path):
         again = fig4.run_fig4(config, tmp_path, workers=1, progress=progress)
     assert report.getvalue() == f"{csv_path}:{len(lines) - 5}: damaged record, recomputing\n"
     # Only the interrupted (shape, size) task is computed again.
-    assert "resuming, 8/9" in progress.getvalue()
+    assert "resuming, 10/11" in progress.getvalue()
     assert len(again) == len(rows)
     with open(csv_path) as f:
         keys = [(r["shape"], r["size"], r["axis"], r["error"]) for r in csv.DictReader(f)]

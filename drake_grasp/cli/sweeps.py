@@ -19,12 +19,14 @@ def add_fig4(sub) -> None:
     """`drake-grasp fig4`."""
     fig4 = sub.add_parser(
         "fig4",
-        help="Fig. 4: quasi-static grasps of spheres, cubes, cylinders; eps over size and pose error",
+        help="Fig. 4: quasi-static grasps of spheres, cubes, cylinders and plates; eps over size and pose error",
         description="Sweeps object size and hand pose error for spheres (spherical mode), cubes and "
-        "cylinders (cylindrical mode): approach until contact, close with breakaway, score with the "
-        "eps metric. Writes fig4.csv (one row per grasp), fig4.png and fig4.svg; resumable.",
+        "cylinders (cylindrical mode), and, for the flower, plates 4-40 mm thick on a table (the precision "
+        "grasp): approach until contact, close with breakaway, score with the eps metric. Writes fig4.csv "
+        "(one row per grasp), fig4.png and fig4.svg; resumable.",
     )
-    fig4.add_argument("--quick", action="store_true", help="9 sizes x 7 errors instead of 27 x 21")
+    fig4.add_argument("--quick", action="store_true",
+                      help="9 sizes (4 plate thicknesses) x 7 errors instead of 27 (10) x 21")
     add_executor_args(fig4)
     add_common(fig4, scenario=False, seed=False)
     fig4.set_defaults(run=_run_fig4, out_default="out/fig4")

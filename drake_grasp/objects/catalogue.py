@@ -295,6 +295,34 @@ def cube_object(
     )
 
 
+# The footprint of Fig. 4's flower family (a plate lying flat, the paper's "flower": small and flat), m:
+# about the generated plates' (`objects.flower`), wider than the hand's closed fingertips are apart.
+PLATE_FAMILY_FOOTPRINT = (0.08, 0.05)
+
+
+def plate_object(
+    thickness: float,
+    *,
+    mass: float | None = None,
+    density: float = DEFAULT_DENSITY,
+    rgba=YELLOW_PAPER_RGBA,
+) -> ObjectSpec:
+    """A solid plate lying flat (Fig. 4's flower family): `PLATE_FAMILY_FOOTPRINT` (its long side along
+    O's x), `thickness` m tall.
+
+    Args:
+        thickness: Height (m).
+        mass: Mass (kg); default density × volume.
+        density: Density (kg/m³) used when `mass` is None; default DEFAULT_DENSITY (assumed).
+        rgba: Visual colour.
+    """
+    _check_size("plate", thickness=thickness)
+    return _make_spec(
+        f"plate_{_mm(thickness)}", [ShapePiece("box", (*PLATE_FAMILY_FOOTPRINT, thickness))], mass, density=density,
+        closest_primitive="box", rgba=rgba,
+    )
+
+
 def cylinder_object(
     diameter: float,
     length: float | None = None,

@@ -10,15 +10,22 @@ and the grasp is scored with the ε metric (`drake_grasp.quality`). The objects 
 Cylinders lie along the object's x with a fixed length of 0.30 m (`objects.CYLINDER_FAMILY_LENGTH`),
 so an error along x runs along the axis and an error along y across it.
 
+The flower (beyond the paper's figure, which stops at the annulus): plates lying flat on a table
+(`objects.plate_object`: an 8 × 5 cm footprint, 4-40 mm thick, the thickness as their size), grasped
+with the precision grasp (`grasps.precision_grasp`: cylindrical mode, palm over the centre, the
+fingertips' deepest sweep 2 mm above the table) with the same position errors. They rest on the
+table, which stops the fingers like the object does; only contacts with the object count in ε.
+
 The sweep is resumable: each (shape, size) is one task, whose rows are appended to ``fig4.csv`` as
 soon as it finishes, each with the fingerprint of the sweep's settings (`Fig4Config.fingerprint`); a
 rerun computes only what is missing for the current fingerprint.
 
 The experiment:
     objects: spheres, cubes and cylinders (0.30 m long), 2-34 cm (`Fig4Config`: 27 sizes; --quick 9),
-        floating in free space;
-    grasps: the spherical mode for spheres, the cylindrical mode for cubes and cylinders, quasi-static,
-        with a hand position error along x or y (-6 to 6 cm: 21 errors; --quick 7);
+        floating in free space; plates 4-40 mm thick on a table (10 thicknesses; --quick 4);
+    grasps: the spherical mode for spheres, the cylindrical mode for cubes and cylinders, the precision
+        grasp for plates, quasi-static, with a hand position error along x or y (-6 to 6 cm: 21
+        errors; --quick 7);
     seeds: none (quasi-static and deterministic);
     writes: fig4.csv (one row per shape, size, axis and error), fig4.png and fig4.svg.
 """
@@ -43,7 +50,8 @@ KEY = ["fingerprint", "shape", "size", "axis", "error"]
 TYPES = {"fingerprint": "hex", "num_contacts": "int", "fingers_touching": "int", "palm_touching": "int",
          **{name: "float" for name in ("size", "error", "epsilon", "volume", "approach_distance", "spread",
                                        "proximal_1", "proximal_2", "proximal_3", "distal_1", "distal_2", "distal_3")}}
-SHAPES = ("sphere", "cube", "cylinder")
+SHAPES = ("sphere", "cube", "cylinder", "plate")
+FLOWER = "plate"  # the family on a table, with the precision grasp
 AXES = ("x", "y")
 
 
@@ -57,10 +65,12 @@ class Fig4Config:
         friction: μ of the ε metric (docs/design.md §4.4: 0.5).
         num_edges: friction-cone edges of the ε metric (docs/design.md §4.5: 8).
         start_clearance: the palm starts this far from the object's top before the approach, m.
+        thicknesses: the flower's plate thicknesses, m (its sizes).
     """
 
     sizes: list[float]
     errors: list[float]
+    thicknesses: list[float] = dataclasses.field(default_factory=lambda: [0.006, 0.012, 0.02, 0.04])
     friction: float = 0.5
     num_edges: int = 8
     start_clearance: float = 0.10
@@ -76,7 +86,8 @@ class Fig4Config:
     def full(cls) -> "Fig4Config":
         # 27 sizes, 2 cm to 34 cm; 21 errors, -6 cm to 6 cm every 6 mm.
         return cls(sizes=[round(s, 4) for s in np.linspace(0.02, 0.34, 27)],
-                   errors=[round(e, 4) + 0.0 for e in np.linspace(-0.06, 0.06, 21)])
+                   errors=[round(e, 4) + 0.0 for e in np.linspace(-0.06, 0.06, 21)],
+                   thicknesses=[round(t, 4) for t in np.linspace(0.004, 0.04, 10)])
 
     @classmethod
     def quick(cls) -> "Fig4Config":
@@ -84,13 +95,17 @@ class Fig4Config:
         return cls(sizes=[round(s, 4) for s in np.linspace(0.02, 0.34, 9)],
                    errors=[round(e, 4) + 0.0 for e in np.linspace(-0.06, 0.06, 7)])
 
+    def sizes_of(self, shape: str) -> list[float]:
+        """The sizes of a family: the plates' thicknesses for the flower, else `sizes`."""
+        return self.thicknesses if shape == FLOWER else self.sizes
+
     def __post_init__(self):
-        for name in ("sizes", "errors"):
+        for name in ("sizes", "errors", "thicknesses"):
             values = getattr(self, name)
             if not values or not all(math.isfinite(v) for v in values):
                 raise ValueError(f"fig4: {name} must be a non-empty list of finite numbers")
-        if min(self.sizes) <= 0:
-            raise ValueError("fig4: sizes must be positive")
+        if min(self.sizes) <= 0 or min(self.thicknesses) <= 0:
+            raise ValueError("fig4: sizes and thicknesses must be positive")
         if not (self.friction >= 0 and math.isfinite(self.friction)):
             raise ValueError(f"fig4: friction must be >= 0, got {self.friction}")
 
@@ -99,6 +114,7 @@ def make_object(shape: str, size: float):
     """The Fig. 4 object of a shape family and size, and the compliance mode used on it."""
     from drake_grasp.hand import ComplianceMode
     from drake_grasp.objects import cube_object, cylinder_object, sphere_object
+    from drake_grasp.objects.catalogue import plate_object
 
     if shape == "sphere":
         return sphere_object(size), ComplianceMode.SPHERICAL
@@ -106,6 +122,8 @@ def make_object(shape: str, size: float):
         return cube_object(size), ComplianceMode.CYLINDRICAL
     if shape == "cylinder":
         return cylinder_object(size), ComplianceMode.CYLINDRICAL
+    if shape == FLOWER:
+        return plate_object(size), ComplianceMode.CYLINDRICAL
     raise ValueError(f"fig4: unknown shape '{shape}' (choose from {', '.join(SHAPES)})")
 
 
@@ -125,18 +143,38 @@ def hand_start_pose(spec, axis: str, error: float, clearance: float):
     return RigidTransform(R_OH, p_OH)
 
 
+def precision_start_pose(spec, axis: str, error: float, clearance: float):
+    """X_OH: the hand base where the precision grasp puts it for the true pose (`grasps.precision_grasp`),
+    offset by `error` along the object's x or y and `clearance` back along the palm normal."""
+    from pydrake.math import RigidTransform
+
+    from drake_grasp import hand
+    from drake_grasp.grasps import oracle_estimate, precision_grasp
+
+    X_OP = precision_grasp(oracle_estimate(RigidTransform(), spec)).X_WP_target
+    offset = np.zeros(3)
+    offset["xy".index(axis)] = error
+    X_OH = X_OP @ RigidTransform([0.0, 0.0, -hand.PALM_HEIGHT - clearance])
+    return RigidTransform(X_OH.rotation(), X_OH.translation() + offset)
+
+
 def run_task(shape: str, size: float, config: Fig4Config) -> list[dict]:
     """All grasps of one (shape, size): both axes, every error. Runs in a worker process."""
     from drake_grasp.quality import grasp_quality
     from drake_grasp.quasistatic import QuasiStaticHand
 
     spec, mode = make_object(shape, size)
-    sim = QuasiStaticHand(spec)
+    flower = shape == FLOWER
+    sim = QuasiStaticHand(spec, table=flower)
     rows = []
     for axis in AXES:
         for error in config.errors:
-            X_OH = hand_start_pose(spec, axis, error, config.start_clearance)
-            grasp = sim.grasp(X_OH, mode, max_approach=config.start_clearance + spec.extents[2] + 0.2)
+            if flower:  # to the precision grasp's palm height, or the first touch before it
+                X_OH = precision_start_pose(spec, axis, error, config.start_clearance)
+                grasp = sim.grasp(X_OH, mode, max_approach=config.start_clearance)
+            else:
+                X_OH = hand_start_pose(spec, axis, error, config.start_clearance)
+                grasp = sim.grasp(X_OH, mode, max_approach=config.start_clearance + spec.extents[2] + 0.2)
             points, normals = grasp.contact_arrays()
             quality = grasp_quality(points, normals, config.friction, np.zeros(3), spec.max_radius,
                                     config.num_edges)
@@ -175,10 +213,10 @@ def _run_fig4(config: Fig4Config, out_dir: pathlib.Path, workers, progress, exec
     table = ResultsTable(out_dir / "fig4.csv", FIELDS, KEY, TYPES)
     fingerprint = config.fingerprint()
     tasks = [
-        (shape, size, config) for shape in SHAPES for size in config.sizes
+        (shape, size, config) for shape in SHAPES for size in config.sizes_of(shape)
         if not all((fingerprint, shape, size, axis, error) in table for axis in AXES for error in config.errors)
     ]
-    total = len(SHAPES) * len(config.sizes)
+    total = sum(len(config.sizes_of(shape)) for shape in SHAPES)
     done = total - len(tasks)
     if done:
         print(f"fig4: resuming, {done}/{total} (shape, size) tasks already in {table.path}", file=progress)
@@ -191,7 +229,7 @@ def _run_fig4(config: Fig4Config, out_dir: pathlib.Path, workers, progress, exec
             shape, size, _ = tasks[index]
             print(f"fig4: {done}/{total} tasks ({shape} {size * 100:.1f} cm) {time.perf_counter() - start:.0f} s",
                   file=progress)
-    wanted = {(s, str(float(z)), a, str(float(e))) for s in SHAPES for z in config.sizes for a in AXES
+    wanted = {(s, str(float(z)), a, str(float(e))) for s in SHAPES for z in config.sizes_of(s) for a in AXES
               for e in config.errors}
     return [r for r in table.rows_of(fingerprint) if (r["shape"], r["size"], r["axis"], r["error"]) in wanted]
 
@@ -254,6 +292,9 @@ def summary_lines(summaries: dict[str, ShapeSummary], rows: list[dict]) -> list[
     and what happens to large cubes."""
     lines = []
     for shape, s in summaries.items():
+        if shape == FLOWER:
+            lines.append(_flower_line(s))
+            continue
         both = (s.mean("x") + s.mean("y")) / 2
         peak = int(np.argmax(both))
         below = [j for j in range(peak, len(both)) if both[j] < 0.1 * both[peak]]
@@ -277,6 +318,21 @@ def summary_lines(summaries: dict[str, ShapeSummary], rows: list[dict]) -> list[
     return lines
 
 
+def _flower_line(s: ShapeSummary) -> str:
+    """The flower's reading: the thinnest plate the precision grasp holds with any ε at all, and where."""
+    both = (s.mean("x") + s.mean("y")) / 2
+    held = [j for j in range(len(both)) if both[j] > 0]
+    if not held:
+        return (f"plates ({s.sizes[0] * 1000:.0f}-{s.sizes[-1] * 1000:.0f} mm thick, precision grasp): eps = 0 at "
+                "every thickness and error")
+    j = held[0]
+    errors = sorted({round(float(e) * 100, 1) for axis in AXES for i, e in enumerate(s.errors)
+                     if s.epsilon[axis][i, j] > 0})
+    return (f"plates (precision grasp): eps = 0 for every error below {s.sizes[j] * 1000:.0f} mm thick; from "
+            f"{s.sizes[j] * 1000:.0f} mm eps_mean {both[j]:.3f} (eps > 0 for errors {errors[0]:g} to {errors[-1]:g} cm); "
+            f"at {s.sizes[-1] * 1000:.0f} mm {both[-1]:.3f}")
+
+
 def plot(summaries: dict[str, ShapeSummary], out_dir: pathlib.Path) -> list[pathlib.Path]:
     """Fig. 4's layout: per shape and error axis, a colour map of ε over (size, error), and under it
     ε_mean, ε_max and ε_0 against size. Writes fig4.png and fig4.svg."""
@@ -298,14 +354,15 @@ def plot(summaries: dict[str, ShapeSummary], out_dir: pathlib.Path) -> list[path
             s.epsilon[axis], origin="lower", aspect="auto", cmap="viridis", vmin=0, vmax=vmax,
             extent=[sizes_cm[0], sizes_cm[-1], errors_cm[0], errors_cm[-1]], interpolation="nearest",
         )
-        top.set_title(f"{shape}, error along {axis}")
-        top.set_xlabel("size (cm)")
+        size_label = "thickness (cm)" if shape == FLOWER else "size (cm)"
+        top.set_title(f"{shape}{' (precision)' if shape == FLOWER else ''}, error along {axis}")
+        top.set_xlabel(size_label)
         if c == 0:
             top.set_ylabel("pose error (cm)")
         bottom.plot(sizes_cm, s.mean(axis), "-o", ms=3, label="ε mean")
         bottom.plot(sizes_cm, s.max(axis), "-^", ms=3, label="ε max")
         bottom.plot(sizes_cm, s.at_zero(axis), "-s", ms=3, label="ε at 0 error")
-        bottom.set_xlabel("size (cm)")
+        bottom.set_xlabel(size_label)
         bottom.set_ylim(0, vmax * 1.05)
         bottom.grid(alpha=0.3)
         if c == 0:
