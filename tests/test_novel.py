@@ -66,3 +66,44 @@ def test_objects_are_generated_once_and_reused(tmp_path):
     assert not list((tmp_path / "objects").glob(".generating.*"))  # no staging folder left behind
     other = novel.ensure_objects(tmp_path / "objects", 2, 8)  # another seed: its own files
     assert {e["file"] for e in other}.isdisjoint(stamps)
+
+
+def test_the_camera_is_compared_with_the_true_estimate_per_class():
+    from drake_grasp.studies import novel_checks
+
+    rows = novel.study_rows(OBJECTS, STATS, COMPARISON)
+    specs = novel_checks.oracle_specs({r.object: r.chosen_grasp for r in rows}, 2, 5, scenario_name="table_top")
+    assert [(s.object, s.method, s.grasp, s.seed) for s in specs[:2]] == [
+        ("o/blob_000.obj", "oracle", "spherical", 5), ("o/blob_000.obj", "oracle", "spherical", 6)]
+    assert len(specs) == 6 and all(s.scenario_name == "table_top" for s in specs)
+    oracle = [{"object": "o/blob_000.obj", "grasp": "spherical", "success": "1"},
+              {"object": "o/blob_000.obj", "grasp": "spherical", "success": "1"},
+              {"object": "o/blob_002.obj", "grasp": "spherical", "success": "0"},
+              {"object": "o/blob_002.obj", "grasp": "spherical", "success": "1"},
+              {"object": "o/ring_001.obj", "grasp": "box", "success": "1"},
+              {"object": "o/ring_001.obj", "grasp": "box", "success": "1"}]
+    text = "\n".join(novel_checks.truth_lines(rows, oracle))
+    assert "| blob | 75 % (3/4" in text and "| 75 % (3/4" in text.split("| blob |")[1]  # camera as truth
+    assert text.rstrip().endswith("| -33 |")  # all: camera 3/6 against 5/6
+    assert "| ring | 0 % (0/2" in text and "| -100 |" in text
+
+
+def test_close_calls_are_reported_with_every_grasp():
+    import json
+
+    from drake_grasp.studies import novel_checks
+
+    rows = novel.study_rows(OBJECTS, STATS, COMPARISON)
+
+    def trial(obj, seed, res):
+        return {"object": obj, "seed": seed, "extra": json.dumps({"resemblance": res})}
+
+    trials = [trial("o/blob_000.obj", 0, {"sphere": 0.9, "cylinder": 0.2, "box": 0.5}),  # margin 0.4
+              trial("o/blob_002.obj", 0, {"sphere": 0.7, "cylinder": 0.6, "box": 0.1}),  # 0.1
+              trial("o/blob_002.obj", 1, {"sphere": 0.7, "cylinder": 0.5, "box": 0.1})]  # 0.2
+    margins = novel_checks.object_margins(trials)
+    assert margins["o/blob_000.obj"] == 0.4 and abs(margins["o/blob_002.obj"] - 0.15) < 1e-12
+    text = "\n".join(novel_checks.margin_lines(rows, trials, ("spherical", "cylindrical", "box")))
+    close = [line for line in text.splitlines() if line.startswith("| margin < 0.2")][0]
+    assert "| 1 | 50 % (1/2" in close and close.endswith("| 50 % (1/2, 95 % CI 9-91 %) | 100 % (2/2, 95 % CI 34-100 %) | 100 % (2/2, 95 % CI 34-100 %) |")
+    assert "Close calls: blob_002 (0.15, chose spherical)." in text

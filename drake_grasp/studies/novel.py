@@ -6,8 +6,9 @@ T shapes, rings and handles, 3-25 cm), through exactly the runner, seeds and suc
 and Fig. 7:
 
 - the compliance-centric algorithm explores each object with the wrist camera and executes each of
-  the three compliant grasps `trials` times (Fig. 6's sweep); the grasp it would choose (highest
-  mean shape resemblance) is marked;
+  the three compliant grasps `trials` times (Fig. 6's sweep; with a scenario that measures flatness,
+  such as `table_top`, the precision grasp too); the grasp it would choose (the decision on its mean
+  resemblances, `primitives.decision`) is marked, and run again from the true estimate;
 - the Eigengrasp planner gets each object's exact model, and its three best grasps the arm can reach
   are each executed `trials` times (Fig. 7's comparison).
 
@@ -19,11 +20,12 @@ and best, and why the failed trials failed.
 
 The experiment:
     objects: `count` generated novel objects (default 20, generator seed `object_seed`), every class;
-    grasps: Fig. 6's three compliant grasps after the camera's exploration, and Fig. 7's planner's
-        three best reachable grasps;
+    grasps: Fig. 6's compliant grasps after the camera's exploration, the chosen one from the true
+        estimate, and Fig. 7's planner's three best reachable grasps;
     seeds: trial i uses seed + i, i < trials (default 5), for both methods;
-    writes: objects/, compliant/fig6.csv, eigengrasp/fig7.csv and plans, novel.csv (one row per
-        object), novel.png and novel.svg, summary.md.
+    writes: objects/, compliant/fig6.csv, oracle/fig6.csv (each chosen grasp from the true estimate:
+        `novel_checks`), eigengrasp/fig7.csv and plans, novel.csv (one row per object), novel.png and
+        novel.svg, summary.md (with the camera against the true estimate, and when nothing fits).
 """
 
 import collections
@@ -35,7 +37,7 @@ import pathlib
 
 import numpy as np
 
-from drake_grasp.studies import fig6, fig7
+from drake_grasp.studies import fig6, fig7, novel_checks
 from drake_grasp.sweeps.results import save_figure
 from drake_grasp.sweeps.stats import error_bars, format_rate, short_rate, wilson_interval
 
@@ -240,16 +242,21 @@ def run_study(config: NovelConfig, out_dir: pathlib.Path, objects: list[dict], e
     """
     from drake_grasp.sweeps.lock import results_lock
     from drake_grasp.sweeps.results import check_results_file, write_atomically
-    from drake_grasp.sweeps.runner import TRIAL_FIELDS, fingerprints, select, trial_table
+    from drake_grasp.sweeps.runner import TRIAL_FIELDS, fingerprints, run_trials, select, trial_table
 
     out_dir.mkdir(parents=True, exist_ok=True)
     with results_lock(out_dir):
-        for path in ("compliant/fig6.csv", "eigengrasp/fig7.csv", "eigengrasp/fig7_compliant.csv"):
+        for path in ("compliant/fig6.csv", "oracle/fig6.csv", "eigengrasp/fig7.csv", "eigengrasp/fig7_compliant.csv"):
             check_results_file(out_dir / path, TRIAL_FIELDS)  # before any work
         names = tuple(entry["file"] for entry in objects)
         config6 = fig6.Fig6Config(objects=names, trials=config.trials, seed=config.seed, method="compliant")
         stats6, _, _, _ = fig6.run_sweep(config6, out_dir / "compliant", scenario_file=scenario_file,
                                          scenario_name=scenario_name, executor=executor)
+        # The camera against the true estimate: each object's chosen grasp, from the ground truth.
+        chosen = {o: fig6.chosen_grasp(per_grasp) for o, per_grasp in stats6.items()}
+        oracle = novel_checks.oracle_specs(chosen, config.trials, config.seed, scenario_file, scenario_name)
+        oracle_rows = run_trials(oracle, out_dir / "oracle" / "fig6.csv", label="novel, true estimate",
+                                 executor=executor)
         config7 = fig7.Fig7Config(objects=names, trials=config.trials, seed=config.seed, steps=config.steps,
                                   energy=config.energy)
         comparison, _, _ = fig7.run_comparison(config7, out_dir / "eigengrasp", out_dir / "compliant",
@@ -266,6 +273,13 @@ def run_study(config: NovelConfig, out_dir: pathlib.Path, objects: list[dict], e
         planner_rows = select(trial_table(out_dir / "eigengrasp" / "fig7.csv", read_only=True).rows(), specs7,
                               fingerprints(specs7))
         lines = summary_lines(rows, chosen_trial_rows(compliant_rows, rows), planner_rows, config)
+        grasps = fig6.sweep_grasps(scenario_file, scenario_name)
+        lines += ["", "## The camera against the true estimate", "",
+                  "Each object's chosen grasp again from the ground-truth estimate (the same seeds):", ""]
+        lines += novel_checks.truth_lines(rows, oracle_rows)
+        lines += ["", "## When nothing fits", "",
+                  "Objects by their mean decision margin (docs/design.md §5.4b), every grasp's success:", ""]
+        lines += novel_checks.margin_lines(rows, compliant_rows, grasps)
         write_csv(out_dir / "novel.csv", rows)
         figures = plot(rows, out_dir)
         write_atomically(out_dir / "summary.md", "# Novel objects\n\n" + "\n".join(lines) + "\n")
