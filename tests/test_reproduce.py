@@ -36,9 +36,11 @@ def test_fig7_claims_and_report(tmp_path):
     assert verdicts["Fig. 7: the planner fails every attempt on the soccer_ball"] == "yes"
     assert verdicts["Fig. 7: game box 100 % for both methods"] == "no"
     path = tmp_path / "report.md"
-    reproduce.write_report(path, claims, 12.0, True, "contact-quality", [], {"fig6": "24 rows"})
+    reproduce.write_report(path, claims, 12.0, True, "contact-quality", [], {"fig6": "24 rows"},
+                           flower_lines=["plates (precision grasp): eps = 0 for every error below 20 mm thick"])
     text = path.read_text()
     assert "reused: fig6 24 rows" in text
+    assert "## Beyond the paper: the flower" in text and "- plates (precision grasp): eps = 0" in text
     assert "1 of 2 claims agree" in text and "| Fig. 7: game box 100 % for both methods |" in text
 
 

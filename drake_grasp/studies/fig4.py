@@ -293,7 +293,7 @@ def summary_lines(summaries: dict[str, ShapeSummary], rows: list[dict]) -> list[
     lines = []
     for shape, s in summaries.items():
         if shape == FLOWER:
-            lines.append(_flower_line(s))
+            lines.append(flower_line(s))
             continue
         both = (s.mean("x") + s.mean("y")) / 2
         peak = int(np.argmax(both))
@@ -318,7 +318,7 @@ def summary_lines(summaries: dict[str, ShapeSummary], rows: list[dict]) -> list[
     return lines
 
 
-def _flower_line(s: ShapeSummary) -> str:
+def flower_line(s: ShapeSummary) -> str:
     """The flower's reading: the thinnest plate the precision grasp holds with any ε at all, and where."""
     both = (s.mean("x") + s.mean("y")) / 2
     held = [j for j in range(len(both)) if both[j] > 0]
