@@ -355,7 +355,7 @@ def plot(summaries: dict[str, ShapeSummary], out_dir: pathlib.Path) -> list[path
             extent=[sizes_cm[0], sizes_cm[-1], errors_cm[0], errors_cm[-1]], interpolation="nearest",
         )
         size_label = "thickness (cm)" if shape == FLOWER else "size (cm)"
-        top.set_title(f"{shape}{' (precision)' if shape == FLOWER else ''}, error along {axis}")
+        top.set_title(f"{shape}{' (precision)' if shape == FLOWER else ''},\nerror along {axis}", fontsize=9)
         top.set_xlabel(size_label)
         if c == 0:
             top.set_ylabel("pose error (cm)")
