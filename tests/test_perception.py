@@ -79,6 +79,24 @@ def test_short_exploration_of_a_ball(ball):
     t = estimate.timings
     assert t["frames"] == round(t["sim_time"] * load_perception_config().rate_hz)
     assert list(t["phase_starts"]) == ["approach", "depth_axis", "resemblance", "done"]
+    # What it cost: every rendered image, the last one's time, and the camera's path (the arcs).
+    cost = estimate.exploration
+    assert cost["kind"] == "full" and cost["images"] == t["frames"]
+    assert cost["time_s"] == pytest.approx((t["frames"] - 1) / load_perception_config().rate_hz)
+    assert 0.05 < cost["path_m"] < 5.0 and 0.1 < cost["path_rad"] < 20.0
+    assert estimate.to_dict()["exploration"] == cost
+
+
+def test_rotation_angle_is_the_geodesic_angle():
+    from pydrake.math import RotationMatrix
+
+    from drake_grasp.primitives.exploration_cost import rotation_angle
+
+    R_a = RotationMatrix.MakeXRotation(0.3).matrix()
+    R_b = (RotationMatrix.MakeXRotation(0.3) @ RotationMatrix.MakeZRotation(-0.7)).matrix()
+    assert rotation_angle(R_a, R_b) == pytest.approx(0.7)
+    assert rotation_angle(R_a, R_a) == 0.0
+    assert rotation_angle(np.eye(3), np.diag([1.0, -1.0, -1.0])) == pytest.approx(math.pi)
 
 
 def test_estimate_converts_to_a_grasp_estimate_and_a_report(ball):

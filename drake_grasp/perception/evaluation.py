@@ -207,6 +207,10 @@ def format_comparison(record: dict) -> list[str]:
         f" (truth: {truth['shape']}, {'right' if errors['shape_correct'] else 'WRONG'})"
     lines.append("resemblance      " + "  ".join(f"{s} {res[s]:.2f}" for s in SHAPES) +
                  f"  -> {record['best_shape']}{verdict}")
+    cost = estimate.get("exploration")
+    if cost:
+        lines.append(f"exploration ({cost['kind']}): {cost['time_s']:.2f} s, {cost['images']} images, camera path "
+                     f"{cost['path_m']:.2f} m and {cost['path_rad']:.2f} rad")
     lines.append(f"{record['object']}: {record['best_shape']} (resemblance {res[record['best_shape']]:.2f}); "
                  f"centre {errors['centre'] * 1000:.1f} mm, depth {errors['depth'] * 100:+.1f} %, axis {axis_error}; "
                  f"{timings['sim_time']:.1f} s simulated, {timings['frames']} frames, {timings['wall_time']:.1f} s wall")

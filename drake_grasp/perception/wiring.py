@@ -39,6 +39,7 @@ from drake_grasp.primitives.camera import SilhouetteCamera
 from drake_grasp.primitives.camera_model import CameraIntrinsics
 from drake_grasp.primitives.depth import DepthPrimitive
 from drake_grasp.primitives.depth_views import DepthViews
+from drake_grasp.primitives.exploration_cost import ExplorationCost
 from drake_grasp.primitives.estimate import ObjectEstimator
 from drake_grasp.primitives.principal_axis import PrincipalAxisPrimitive
 from drake_grasp.primitives.resemblance import ShapeResemblancePrimitive
@@ -73,6 +74,7 @@ class VisualPrimitives:
     camera_motion: CameraTwistController
     estimator: ObjectEstimator
     depth_views: DepthViews | None = None  # with a table-top estimate (`config.table_top`) only
+    cost: ExplorationCost | None = None  # what the exploration cost (time, camera path, images)
 
     def primitives(self) -> list:
         return [self.depth, self.axis] + [self.resemblance[s] for s in SHAPES]
@@ -171,6 +173,9 @@ def AddVisualPrimitives(builder: DiagramBuilder, station: Station, config: Perce
     for shape in SHAPES:
         builder.Connect(resemblance[shape].GetOutputPort("resemblance"),
                         estimator.GetInputPort(f"{shape}_resemblance"))
+    cost = builder.AddNamedSystem("exploration_cost", ExplorationCost(period))
+    builder.Connect(camera.GetOutputPort("camera_sample"), cost.GetInputPort("camera_sample"))
+    builder.Connect(cost.GetOutputPort("cost"), estimator.GetInputPort("exploration_cost"))
     depth_views = None
     if config.table_top is not None:
         depth_views = builder.AddNamedSystem("depth_views", DepthViews(camera, config.table_top,
@@ -179,7 +184,7 @@ def AddVisualPrimitives(builder: DiagramBuilder, station: Station, config: Perce
         builder.Connect(station_system.GetOutputPort(image_port), depth_views.image_input_port())
         builder.Connect(station_system.GetOutputPort("camera.X_WC"), depth_views.GetInputPort("X_WC"))
         builder.Connect(depth_views.GetOutputPort("table_top"), estimator.GetInputPort("table_top"))
-    return VisualPrimitives(camera, depth, axis, resemblance, twist_sum, camera_motion, estimator, depth_views)
+    return VisualPrimitives(camera, depth, axis, resemblance, twist_sum, camera_motion, estimator, depth_views, cost)
 
 
 def AddExplorationSequencer(builder: DiagramBuilder, primitives: VisualPrimitives, config: PerceptionConfig

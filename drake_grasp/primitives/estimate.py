@@ -22,6 +22,7 @@ from pydrake.systems.framework import Context, LeafSystem
 
 from drake_grasp.primitives.decision import choose_shape, decision_margin
 from drake_grasp.primitives.depth_views import TableTopVector
+from drake_grasp.primitives.exploration_cost import CostVector
 from drake_grasp.primitives.estimators import is_upright
 from drake_grasp.primitives.flat import flat_resemblance
 from drake_grasp.primitives.scores import SHAPES
@@ -60,6 +61,9 @@ class ObjectEstimate:
             and how sure it is: {"views", "cells", "clipped", "uncertainty": {"centre" (m),
             "axis_deg", "extents" (m, 3)}, "silhouettes": the silhouettes' own centre, principal
             axis, axes and extents, which it replaced}; None without it (and left out of `to_dict`).
+        exploration: what the exploration cost (`primitives.exploration_cost`): {"kind" ("full": the
+            paper's exploration), "time_s", "path_m", "path_rad", "images"}; None where nothing
+            measured it.
     """
 
     status: str
@@ -74,6 +78,7 @@ class ObjectEstimate:
     elongation: float = math.nan
     timings: dict = dataclasses.field(default_factory=dict)
     table_top: dict | None = None
+    exploration: dict | None = None
 
     @property
     def found(self) -> bool:
@@ -142,7 +147,7 @@ class ObjectEstimate:
             return x
 
         return {f.name: plain(getattr(self, f.name)) for f in dataclasses.fields(self)
-                if not (f.name == "table_top" and self.table_top is None)}
+                if not (f.name in ("table_top", "exploration") and getattr(self, f.name) is None)}
 
 
 def _short(values) -> str:
@@ -300,6 +305,7 @@ class ObjectEstimator(LeafSystem):
         sphere_resemblance, cylinder_resemblance, box_resemblance (1 each): in [0, 1].
         evidence (9): from the box resemblance primitive (its `evidence` output).
         table_top (25, optional): `depth_views.TableTopVector`; unconnected, the silhouettes' estimate.
+        exploration_cost (4, optional): `exploration_cost.CostVector`, what the exploration cost so far.
     Output ports:
         estimate: the ObjectEstimate (abstract).
     """
@@ -313,6 +319,7 @@ class ObjectEstimator(LeafSystem):
             self.DeclareVectorInputPort(f"{shape}_resemblance", 1)
         self.DeclareVectorInputPort("evidence", 9)
         self._table_top_port = self.DeclareVectorInputPort("table_top", 25)
+        self._cost_port = self.DeclareVectorInputPort("exploration_cost", CostVector.SIZE)
         self.DeclareAbstractOutputPort("estimate", lambda: AbstractValue.Make(ObjectEstimate(status=OBJECT_NOT_FOUND)),
                                        self._CalcEstimate, {self.all_input_ports_ticket()})
 
@@ -320,10 +327,14 @@ class ObjectEstimator(LeafSystem):
         def read(name):
             return np.asarray(self.GetInputPort(name).Eval(context), float)
 
-        output.set_value(gather_estimate(
+        estimate = gather_estimate(
             phase_value(read("phase")[0]), read("centre"), read("camera_sample")[13:16], read("axis"),
             read("axis_info"), read("extents"), {s: read(f"{s}_resemblance")[0] for s in SHAPES}, read("evidence"),
-            read("extents_frame"), self._TableTop(context)))
+            read("extents_frame"), self._TableTop(context))
+        if self._cost_port.HasValue(context):
+            cost = CostVector.from_vector(self._cost_port.Eval(context))
+            estimate = dataclasses.replace(estimate, exploration=cost.to_dict("full"))
+        output.set_value(estimate)
 
     def _TableTop(self, context: Context):
         if not self._table_top_port.HasValue(context):

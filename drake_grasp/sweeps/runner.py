@@ -126,7 +126,8 @@ def _extra(spec: TrialSpec, record, scenario, obj) -> dict:
     if spec.method == "compliant":
         return {"resemblance": record.resemblances, "chosen": record.chosen_grasp,
                 "estimate_errors": record.estimate_errors, "scenario": spec.scenario_name,
-                "segmentation": scenario.perception.segmentation.method}
+                "segmentation": scenario.perception.segmentation.method,
+                "exploration": (record.estimate or {}).get("exploration")}
     if spec.method == "oracle":
         return {"truth_class": obj.closest_primitive}
     return dict(record.planned_grasp or {})  # eigengrasp: the planned grasp executed
