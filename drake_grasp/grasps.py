@@ -18,9 +18,10 @@ model and no contact planning: the hand's compliance does the rest.
   `PRECISION_CLEARANCE` above the table, where they move almost level (the tip travels 4 cm inward
   while it rises 2 mm), meant to meet a thin object at its foot and close along the table (the table
   as the environmental constraint: Eppner et al., "Exploitation of environmental constraints in human
-  and robotic grasping", IJRR 2015). A first version: the pad's inner corners, which meet the
-  object's edge, pass 13-17 mm above its lowest corners, so plates and sticks are still missed
-  (docs/results/flower.md).
+  and robotic grasping", IJRR 2015). Where it cannot reach: closing on anything narrower than about
+  20 cm, the distal link is past vertical when it meets the object's edge, so the pad's inner corners
+  pass 13-17 mm above its lowest ones; plates under about 1.5 cm and sticks under about 2 cm across are
+  missed (the BH8's geometry: docs/design.md §5.4b, docs/results/flower.md).
 * **box grasp**: cylindrical mode; the hand is aligned with the box's axes: it approaches along the
   box axis closest to the vertical (onto the top face), and its fingers close across the shorter side
   of that face. A face wider than the fingers' knuckles are apart would catch the open proximal links

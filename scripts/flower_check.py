@@ -10,6 +10,7 @@ camera chose) to OUT/summary.md, printed, and with --report copied there.
 
 Run: .venv/bin/python scripts/flower_check.py [--count 12] [--seed 0] [--seeds 1] [--workers 2]
      [--out out/flower] [--report docs/results/flower.md] [--grasps precision,box] [--no-camera]
+     [--classes ball,fruit]
 """
 
 import collections
@@ -34,6 +35,7 @@ def main(argv=None) -> int:
     parser.add_argument("--report", help="copy the summary here")
     parser.add_argument("--grasps", default=",".join(GRASPS), help="the oracle grasps (comma-separated)")
     parser.add_argument("--no-camera", action="store_true", help="oracle trials only")
+    parser.add_argument("--classes", help="keep only these classes of the COUNT objects (comma-separated)")
     try:
         args = parser.parse_args(argv)
         grasps = [g.strip() for g in args.grasps.split(",") if g.strip()]
@@ -41,6 +43,11 @@ def main(argv=None) -> int:
             raise UsageError(f"--grasps: choose from {', '.join(GRASPS)}")
         if args.count < 1 or args.seeds < 1 or args.seed < 0 or args.workers < 1:
             raise UsageError("--count, --seeds and --workers must be >= 1, --seed >= 0")
+        from drake_grasp.objects.flower import CLASSES
+
+        classes = CLASSES if not args.classes else tuple(c.strip() for c in args.classes.split(",") if c.strip())
+        if not classes or any(c not in CLASSES for c in classes):
+            raise UsageError(f"--classes: choose from {', '.join(CLASSES)}")
     except UsageError as error:
         print(f"{PROG}: error: {error}", file=sys.stderr)
         return 2
@@ -55,7 +62,7 @@ def main(argv=None) -> int:
     rows = json.loads(manifest.read_text()) if manifest.is_file() else []
     if len(rows) != args.count or any(r["seed"] != args.seed for r in rows):
         rows = flower.generate(args.count, args.seed, objects_dir)
-    objects = [(str(objects_dir / r["file"]), r["class"]) for r in rows]
+    objects = [(str(objects_dir / r["file"]), r["class"]) for r in rows if r["class"] in classes]
     specs = [TrialSpec(path, "oracle", g, s) for path, _ in objects for g in grasps for s in range(args.seeds)]
     if not args.no_camera:
         specs += [TrialSpec(path, "compliant", "", s, scenario_name="table_top")
@@ -98,7 +105,8 @@ def summary_lines(records, shape_class, grasps, args) -> list[str]:
         return f"{k}/{n} ({100 * lo:.0f}-{100 * hi:.0f} %)"
 
     lines = [f"# The flower: thin, flat and small objects ({args.count} objects, generator seed {args.seed})", "",
-             f"Made by `scripts/flower_check.py --count {args.count} --seed {args.seed} --seeds {args.seeds}`: "
+             f"Made by `scripts/flower_check.py --count {args.count} --seed {args.seed} --seeds {args.seeds}"
+             f"{' --classes ' + args.classes if args.classes else ''}`: "
              "each oracle grasp from the true pose, and the camera-driven algorithm with the `table_top` "
              "scenario (its own choice among four), trial seeds 0.."
              f"{args.seeds - 1}. Held / trials, 95 % Wilson intervals.", "",

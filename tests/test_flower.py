@@ -23,3 +23,16 @@ def test_the_flower_generator_is_seeded_and_its_objects_are_the_named_sizes(tmp_
         else:  # ball, fruit
             assert 0.04 - 1e-3 <= high <= 0.08 + 1e-3
     np.testing.assert_array_equal(flower.flower_object(3, 4).mesh.vertices, flower.flower_object(3, 4).mesh.vertices)
+
+
+def test_flower_check_refuses_an_unknown_class_in_one_line(capsys):
+    import importlib.util
+    import pathlib
+
+    path = pathlib.Path(__file__).resolve().parents[1] / "scripts" / "flower_check.py"
+    spec = importlib.util.spec_from_file_location("flower_check", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    assert module.main(["--classes", "ball,pear"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "--classes: choose from plate, T, L, stick, ball, fruit" in err
