@@ -65,12 +65,12 @@ class Fig4Config:
         friction: μ of the ε metric (docs/design.md §4.4: 0.5).
         num_edges: friction-cone edges of the ε metric (docs/design.md §4.5: 8).
         start_clearance: the palm starts this far from the object's top before the approach, m.
-        thicknesses: the flower's plate thicknesses, m (its sizes).
+        thicknesses: the flower's plate thicknesses, m (its sizes; none: the paper's three families only).
     """
 
     sizes: list[float]
     errors: list[float]
-    thicknesses: list[float] = dataclasses.field(default_factory=lambda: [0.006, 0.012, 0.02, 0.04])
+    thicknesses: list[float] = dataclasses.field(default_factory=list)
     friction: float = 0.5
     num_edges: int = 8
     start_clearance: float = 0.10
@@ -93,18 +93,19 @@ class Fig4Config:
     def quick(cls) -> "Fig4Config":
         # 9 sizes, 2 cm to 34 cm; 7 errors, -6 cm to 6 cm every 2 cm.
         return cls(sizes=[round(s, 4) for s in np.linspace(0.02, 0.34, 9)],
-                   errors=[round(e, 4) + 0.0 for e in np.linspace(-0.06, 0.06, 7)])
+                   errors=[round(e, 4) + 0.0 for e in np.linspace(-0.06, 0.06, 7)],
+                   thicknesses=[0.006, 0.012, 0.02, 0.04])
 
     def sizes_of(self, shape: str) -> list[float]:
         """The sizes of a family: the plates' thicknesses for the flower, else `sizes`."""
         return self.thicknesses if shape == FLOWER else self.sizes
 
     def __post_init__(self):
-        for name in ("sizes", "errors", "thicknesses"):
+        for name in ("sizes", "errors"):
             values = getattr(self, name)
             if not values or not all(math.isfinite(v) for v in values):
                 raise ValueError(f"fig4: {name} must be a non-empty list of finite numbers")
-        if min(self.sizes) <= 0 or min(self.thicknesses) <= 0:
+        if min(self.sizes) <= 0 or not all(math.isfinite(t) and t > 0 for t in self.thicknesses):
             raise ValueError("fig4: sizes and thicknesses must be positive")
         if not (self.friction >= 0 and math.isfinite(self.friction)):
             raise ValueError(f"fig4: friction must be >= 0, got {self.friction}")
