@@ -35,7 +35,8 @@ def test_the_sweep_machinery_imports_no_study():
 # A study module (one experiment) against its helpers: pure analysis, reports, the results page.
 STUDY_MODULES = ("fig4", "fig6", "fig7", "novel", "sensitivity", "capture", "epsilon_physics", "near_primitives", "estimates",
                  "reproduce")
-HELPERS = ("calibration", "capture_region", "replays", "report_page", "near_primitives_report", "sensitivity_report")
+HELPERS = ("calibration", "capture_region", "replays", "report_page", "near_primitives_report", "sensitivity_report",
+           "novel_checks")
 
 
 def test_every_study_says_what_it_runs_and_writes():
