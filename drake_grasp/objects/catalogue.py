@@ -289,10 +289,13 @@ def cube_object(
         rgba: Visual colour.
     """
     _check_size("cube", edge=edge)
-    return _make_spec(
-        f"cube_{_mm(edge)}", [ShapePiece("box", (edge, edge, edge))], mass, density=density,
-        closest_primitive="box", rgba=rgba,
-    )
+    return _box_family(f"cube_{_mm(edge)}", (edge, edge, edge), mass, density, rgba)
+
+
+def _box_family(name: str, size: tuple, mass: float | None, density: float, rgba) -> ObjectSpec:
+    """A solid box of `size` (m, along O's axes) resting on its face, as Fig. 4's box families are."""
+    return _make_spec(name, [ShapePiece("box", tuple(size))], mass, density=density, closest_primitive="box",
+                      rgba=rgba)
 
 
 # The footprint of Fig. 4's flower family (a plate lying flat, the paper's "flower": small and flat), m:
@@ -317,10 +320,7 @@ def plate_object(
         rgba: Visual colour.
     """
     _check_size("plate", thickness=thickness)
-    return _make_spec(
-        f"plate_{_mm(thickness)}", [ShapePiece("box", (*PLATE_FAMILY_FOOTPRINT, thickness))], mass, density=density,
-        closest_primitive="box", rgba=rgba,
-    )
+    return _box_family(f"plate_{_mm(thickness)}", (*PLATE_FAMILY_FOOTPRINT, thickness), mass, density, rgba)
 
 
 def cylinder_object(
