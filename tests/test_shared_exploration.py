@@ -90,3 +90,7 @@ def test_one_exploration_gives_each_grasp_the_record_it_gives_alone(tmp_path, sh
     assert set(shared) == {"box", "cylindrical"}
     assert shared == alone
     assert all(json.loads(r["extra"])["resemblance"] for r in shared.values())
+    # Every camera-driven row says how clear the choice was and what the exploration cost.
+    extra = json.loads(shared["box"]["extra"])
+    assert 0.0 <= extra["margin"] <= 1.0
+    assert extra["exploration"]["kind"] == "full" and extra["exploration"]["images"] > 100

@@ -125,6 +125,7 @@ def _extra(spec: TrialSpec, record, scenario, obj) -> dict:
     """The row's `extra` cell: what the method adds to the record's common fields."""
     if spec.method == "compliant":
         return {"resemblance": record.resemblances, "chosen": record.chosen_grasp,
+                "margin": (record.estimate or {}).get("resemblance_margin"),
                 "estimate_errors": record.estimate_errors, "scenario": spec.scenario_name,
                 "segmentation": scenario.perception.segmentation.method,
                 "exploration": (record.estimate or {}).get("exploration")}
