@@ -54,6 +54,9 @@ class PerceptionConfig:
             raise ValueError("start_configuration needs 7 joint angles")
         self.segmentation.validate()
         self.sequencer.validate()
+        if self.sequencer.minimal is not None and self.table_top is None:
+            raise ValueError("sequencer.minimal (the minimal exploration) needs the table-top estimate "
+                             "(perception.table_top): its confirming arc turns about the depth views' centre and axis")
         for shape in SHAPES:
             getattr(self, shape).validate()
         if self.table_top is not None:

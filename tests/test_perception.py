@@ -200,3 +200,22 @@ def test_the_algorithm_side_never_imports_the_evaluation_side():
                 continue
             assert not (names & forbidden), f"{path.relative_to(root)} imports {names & forbidden}"
     assert len(algorithm) > 10
+
+
+def test_the_minimal_exploration_confirms_a_ball_in_a_third_of_the_time():
+    # The paper's proposal: the hypothesis "round" from the approach, one tilt arc confirms a sphere.
+    scenario = load_scenario(scenario_name="minimal_exploration")
+    spec = resolve_object("sphere:0.12")
+    estimate = explore(scenario, None, spec).estimate
+    cost = estimate.exploration
+    assert estimate.best_shape == "sphere"
+    assert cost["kind"] == "confirmed" and cost["hypothesis"] == "round" and "sphere" in cost["why"]
+    assert cost["time_s"] < load_perception_config().sequencer.total_time / 3
+    assert list(estimate.timings["phase_starts"]) == ["approach", "confirm", "done"]
+
+
+def test_the_minimal_exploration_needs_the_table_top_estimate(tmp_path):
+    bad = tmp_path / "minimal.yaml"
+    bad.write_text("default:\n  perception:\n    sequencer:\n      minimal:\n        confirm_time: 2.0\n")
+    with pytest.raises(ValueError, match="needs the table-top estimate"):
+        load_scenario(bad)

@@ -280,6 +280,51 @@ def test_sequencer_runs_the_phases(visible):
     assert sequencer.state(context).phase.finished
 
 
+@pytest.mark.parametrize("eccentricity, invariance_a, confirmed", [(3.0, 0.95, "cylinder"), (3.0, 0.05, "box"),
+                                                                   (3.0, 0.5, None), (1.3, 0.95, None)])
+def test_the_minimal_sequencer_confirms_or_falls_back(eccentricity, invariance_a, confirmed):
+    from drake_grasp.primitives.sequencer import MinimalParams
+
+    params = SequencerParams(approach_time=0.5, depth_axis_time=1.0, resemblance_time=1.0,
+                             minimal=MinimalParams(confirm_time=0.5))
+    sequencer = ExplorationSequencer(PERIOD, params)
+    simulator = Simulator(sequencer)
+    context = simulator.get_mutable_context()
+    R, p = orbit_pose([0.55, 0, 0.05], 0.4, "x", 0.0)
+    sequencer.GetInputPort("camera_sample").FixValue(
+        context, sample_of(sphere_points([0.55, 0, 0.05], 0.05), R, p, 0.0).to_vector())
+    sequencer.GetInputPort("axis_info").FixValue(context, [1.0, eccentricity, 0.0])
+    # The box primitive's evidence: [V_a, V_b, e0, I_a, I_b, R, sphere, cylinder, box].
+    sequencer.GetInputPort("evidence").FixValue(context, [0.0, 0.0, eccentricity, invariance_a, 1.0, 0.0, 0.0,
+                                                          invariance_a, 1.0 - invariance_a])
+
+    def commands():
+        return [int(sequencer.GetOutputPort(n).Eval(context)[0])
+                for n in ("phase", "sphere_command", "cylinder_command", "box_command")]
+
+    simulator.AdvanceTo(0.6)
+    if eccentricity < 1.5:  # neither elongated nor round: no hypothesis, the full exploration at once
+        assert commands()[0] == ExplorationPhase.DEPTH_AXIS
+        assert sequencer.GetOutputPort("outcome").Eval(context)["kind"] == "fallback"
+        return
+    # Elongated: the arc about the axis (the cylinder primitive's) confirms; the box primitive records.
+    assert commands() == [ExplorationPhase.CONFIRM, PrimitiveCommand.OFF, PrimitiveCommand.CONFIRM,
+                          PrimitiveCommand.EXPLORE]
+    assert sequencer.GetOutputPort("outcome").Eval(context) == {"kind": "minimal", "hypothesis": "elongated",
+                                                                "why": ""}
+    simulator.AdvanceTo(1.1)
+    outcome = sequencer.GetOutputPort("outcome").Eval(context)
+    if confirmed:
+        assert commands()[0] == ExplorationPhase.DONE and outcome["kind"] == "confirmed"
+        assert confirmed in outcome["why"] or ("not invariant" in outcome["why"]) == (confirmed == "box")
+        return
+    assert commands() == [ExplorationPhase.DEPTH_AXIS] + [PrimitiveCommand.OFF] * 3 and outcome["kind"] == "fallback"
+    simulator.AdvanceTo(3.2)  # the full exploration from there: depth and axis, then the resemblances
+    assert commands()[0] == ExplorationPhase.DONE
+    names = [ExplorationPhase(p).name for p, _ in sequencer.state(context).phase_starts]
+    assert names == ["APPROACH", "CONFIRM", "DEPTH_AXIS", "RESEMBLANCE", "DONE"]
+
+
 # --- CameraTwistController ------------------------------------------------------------------------
 
 

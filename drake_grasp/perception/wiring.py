@@ -38,7 +38,7 @@ from drake_grasp.objects import ObjectSpec
 from drake_grasp.primitives.camera import SilhouetteCamera
 from drake_grasp.primitives.camera_model import CameraIntrinsics
 from drake_grasp.primitives.depth import DepthPrimitive
-from drake_grasp.primitives.depth_views import DepthViews
+from drake_grasp.primitives.depth_views import DepthViews, TableTopFrame
 from drake_grasp.primitives.exploration_cost import ExplorationCost
 from drake_grasp.primitives.estimate import ObjectEstimator
 from drake_grasp.primitives.principal_axis import PrincipalAxisPrimitive
@@ -139,9 +139,11 @@ def AddVisualPrimitives(builder: DiagramBuilder, station: Station, config: Perce
 
     depth = builder.AddNamedSystem("depth_primitive", DepthPrimitive(intrinsics, period, config.depth))
     axis = builder.AddNamedSystem("principal_axis_primitive", PrincipalAxisPrimitive(intrinsics, period, config.axis))
+    minimal = config.sequencer.minimal
     resemblance = {
         shape: builder.AddNamedSystem(f"{shape}_resemblance_primitive", ShapeResemblancePrimitive(
-            shape, intrinsics, period, getattr(config, shape), config.scores))
+            shape, intrinsics, period, getattr(config, shape), config.scores,
+            None if minimal is None else minimal.confirm_time))
         for shape in SHAPES
     }
     primitives = [depth, axis] + [resemblance[s] for s in SHAPES]
@@ -149,9 +151,12 @@ def AddVisualPrimitives(builder: DiagramBuilder, station: Station, config: Perce
         builder.Connect(camera.GetOutputPort("camera_sample"), primitive.GetInputPort("camera_sample"))
     builder.Connect(depth.GetOutputPort("centre"), axis.GetInputPort("centre"))
     builder.Connect(axis.GetOutputPort("axis"), depth.GetInputPort("axis"))
-    for shape in SHAPES:
-        builder.Connect(depth.GetOutputPort("centre"), resemblance[shape].GetInputPort("centre"))
-        builder.Connect(axis.GetOutputPort("axis"), resemblance[shape].GetInputPort("axis"))
+    # The resemblance primitives explore about the primitives' centre and axis; in the minimal
+    # exploration about the table-top estimate's (`depth_views.TableTopFrame`), connected below.
+    if minimal is None:
+        for shape in SHAPES:
+            builder.Connect(depth.GetOutputPort("centre"), resemblance[shape].GetInputPort("centre"))
+            builder.Connect(axis.GetOutputPort("axis"), resemblance[shape].GetInputPort("axis"))
 
     twist_sum = builder.AddNamedSystem("camera_twist_sum", Adder(len(primitives), 6))
     for i, primitive in enumerate(primitives):
@@ -184,6 +189,12 @@ def AddVisualPrimitives(builder: DiagramBuilder, station: Station, config: Perce
         builder.Connect(station_system.GetOutputPort(image_port), depth_views.image_input_port())
         builder.Connect(station_system.GetOutputPort("camera.X_WC"), depth_views.GetInputPort("X_WC"))
         builder.Connect(depth_views.GetOutputPort("table_top"), estimator.GetInputPort("table_top"))
+        if minimal is not None:
+            frame = builder.AddNamedSystem("table_top_frame", TableTopFrame())
+            builder.Connect(depth_views.GetOutputPort("table_top"), frame.GetInputPort("table_top"))
+            for shape in SHAPES:
+                builder.Connect(frame.GetOutputPort("centre"), resemblance[shape].GetInputPort("centre"))
+                builder.Connect(frame.GetOutputPort("axis"), resemblance[shape].GetInputPort("axis"))
     return VisualPrimitives(camera, depth, axis, resemblance, twist_sum, camera_motion, estimator, depth_views, cost)
 
 
@@ -200,8 +211,13 @@ def AddExplorationSequencer(builder: DiagramBuilder, primitives: VisualPrimitive
     builder.Connect(sequencer.GetOutputPort("depth_command"), primitives.depth.GetInputPort("command"))
     builder.Connect(sequencer.GetOutputPort("axis_command"), primitives.axis.GetInputPort("command"))
     for shape in SHAPES:
-        builder.Connect(sequencer.GetOutputPort("resemblance_command"),
-                        primitives.resemblance[shape].GetInputPort("command"))
+        builder.Connect(sequencer.GetOutputPort(f"{shape}_command"), primitives.resemblance[shape].GetInputPort("command"))
+    builder.Connect(sequencer.GetOutputPort("outcome"), primitives.estimator.GetInputPort("exploration_outcome"))
+    if config.sequencer.minimal is not None:  # what the hypothesis and its confirmation read
+        builder.Connect(primitives.axis.GetOutputPort("axis_info"), sequencer.GetInputPort("axis_info"))
+        builder.Connect(primitives.resemblance["box"].GetOutputPort("evidence"), sequencer.GetInputPort("evidence"))
+        if primitives.depth_views is not None:
+            builder.Connect(primitives.depth_views.GetOutputPort("table_top"), sequencer.GetInputPort("table_top"))
     return sequencer
 
 

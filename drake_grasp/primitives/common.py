@@ -27,6 +27,11 @@ class PrimitiveCommand(enum.IntEnum):
     TRACK = 1  # servo (keep the object centred / its axis aligned) and keep estimating; no exploration.
     APPROACH = 2  # TRACK, and move along the optical axis until the object fills a set part of the image.
     EXPLORE = 3  # TRACK, plus the primitive's exploratory arc.
+    CONFIRM = 4  # EXPLORE with the arc at once and in the confirming time (the minimal exploration's).
+
+    @property
+    def exploring(self) -> bool:
+        return self in (PrimitiveCommand.EXPLORE, PrimitiveCommand.CONFIRM)
 
     @classmethod
     def from_value(cls, value: float) -> "PrimitiveCommand":
@@ -41,7 +46,8 @@ class VisualPrimitive(LeafSystem):
 
     Subclasses declare their own state and outputs, and call `DeclareCameraRateUpdate` with their
     update method, which gets (context, discrete_state, sample, command, explore_time).
-    `explore_time` is the time since the command last became EXPLORE (or None when not exploring).
+    `explore_time` is the time since the command last became EXPLORE or CONFIRM (or None when not
+    exploring).
     """
 
     # Layout of the bookkeeping state group: [time of the last sample used, last command,
@@ -72,10 +78,10 @@ class VisualPrimitive(LeafSystem):
             return
         sample = CameraSample.from_vector(self._camera_sample_port.Eval(context))
         t = context.get_time()
-        if command == PrimitiveCommand.EXPLORE and book[self._BOOK_LAST_COMMAND] != PrimitiveCommand.EXPLORE:
+        if command.exploring and book[self._BOOK_LAST_COMMAND] != command:
             book[self._BOOK_EXPLORE_START] = t
             discrete_state.get_mutable_vector(self._arc).SetFromVector(np.zeros(7))  # a new arc
-        explore_time = t - book[self._BOOK_EXPLORE_START] if command == PrimitiveCommand.EXPLORE else None
+        explore_time = t - book[self._BOOK_EXPLORE_START] if command.exploring else None
         new_sample = sample.time > book[self._BOOK_LAST_TIME] + 1e-9
         twist = np.zeros(TWIST_SIZE)
         if command != PrimitiveCommand.OFF:

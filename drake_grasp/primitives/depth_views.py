@@ -155,3 +155,38 @@ def table_top_vector(maps: tuple[table_top.HeightMap, table_top.HeightMap], view
     halves = [table_top.estimate(m, min_cells) for m in maps]
     bracket = 0.0 if whole is None else whole.centre_bracket
     return TableTopVector(whole, table_top.spread(*halves, both.cell, bracket), both.clipped, views)
+
+
+class TableTopFrame(LeafSystem):
+    """The table-top estimate as the frame the resemblance primitives explore in (the minimal
+    exploration's): its centre, and its principal axis where that lies within 45° of the table (a lying
+    object's), else a side of its footprint (horizontal: a round or upright object's). After the approach
+    alone the depth and principal-axis primitives have not explored yet (their centre is their prior,
+    their axis as often the view direction as the object's), while the depth views already hold the
+    object's top.
+
+    Input ports:
+        table_top (25): `TableTopVector`.
+    Output ports:
+        centre (3), axis (3): world frame (m; unit vector), NaN before an estimate.
+    """
+
+    def __init__(self):
+        super().__init__()
+        self._table_top_port = self.DeclareVectorInputPort("table_top", TableTopVector.SIZE)
+        self.DeclareVectorOutputPort("centre", 3, lambda context, output: output.SetFromVector(self.frame(context)[0]))
+        self.DeclareVectorOutputPort("axis", 3, lambda context, output: output.SetFromVector(self.frame(context)[1]))
+
+    def frame(self, context: Context) -> tuple[np.ndarray, np.ndarray]:
+        return table_top_frame(TableTopVector.from_vector(self._table_top_port.Eval(context)))
+
+
+def table_top_frame(vector: TableTopVector) -> tuple[np.ndarray, np.ndarray]:
+    """(centre, axis) of a table-top estimate (`TableTopFrame`); NaN without one."""
+    estimate = vector.estimate
+    if estimate is None:
+        return np.full(3, np.nan), np.full(3, np.nan)
+    axis = np.asarray(estimate.principal_axis, float)
+    if abs(axis[2]) > math.cos(math.radians(45.0)):
+        axis = np.asarray(estimate.sides, float)
+    return np.asarray(estimate.centre, float), axis

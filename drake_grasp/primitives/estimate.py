@@ -61,9 +61,10 @@ class ObjectEstimate:
             and how sure it is: {"views", "cells", "clipped", "uncertainty": {"centre" (m),
             "axis_deg", "extents" (m, 3)}, "silhouettes": the silhouettes' own centre, principal
             axis, axes and extents, which it replaced}; None without it (and left out of `to_dict`).
-        exploration: what the exploration cost (`primitives.exploration_cost`): {"kind" ("full": the
-            paper's exploration), "time_s", "path_m", "path_rad", "images"}; None where nothing
-            measured it.
+        exploration: what the exploration was and cost (`primitives.exploration_cost`): {"kind" ("full":
+            the paper's exploration; "confirmed" or "fallback": the minimal one's hypothesis confirmed,
+            or not and the full exploration ran after it), "time_s", "path_m", "path_rad", "images",
+            and for the minimal exploration "hypothesis" and "why"}; None where nothing measured it.
     """
 
     status: str
@@ -306,6 +307,8 @@ class ObjectEstimator(LeafSystem):
         evidence (9): from the box resemblance primitive (its `evidence` output).
         table_top (25, optional): `depth_views.TableTopVector`; unconnected, the silhouettes' estimate.
         exploration_cost (4, optional): `exploration_cost.CostVector`, what the exploration cost so far.
+        exploration_outcome (abstract dict, optional): the sequencer's `outcome` (what kind of exploration
+            ran); unconnected, "full".
     Output ports:
         estimate: the ObjectEstimate (abstract).
     """
@@ -320,6 +323,7 @@ class ObjectEstimator(LeafSystem):
         self.DeclareVectorInputPort("evidence", 9)
         self._table_top_port = self.DeclareVectorInputPort("table_top", 25)
         self._cost_port = self.DeclareVectorInputPort("exploration_cost", CostVector.SIZE)
+        self._outcome_port = self.DeclareAbstractInputPort("exploration_outcome", AbstractValue.Make({"kind": "full"}))
         self.DeclareAbstractOutputPort("estimate", lambda: AbstractValue.Make(ObjectEstimate(status=OBJECT_NOT_FOUND)),
                                        self._CalcEstimate, {self.all_input_ports_ticket()})
 
@@ -333,7 +337,8 @@ class ObjectEstimator(LeafSystem):
             read("extents_frame"), self._TableTop(context))
         if self._cost_port.HasValue(context):
             cost = CostVector.from_vector(self._cost_port.Eval(context))
-            estimate = dataclasses.replace(estimate, exploration=cost.to_dict("full"))
+            outcome = self._outcome_port.Eval(context) if self._outcome_port.HasValue(context) else {"kind": "full"}
+            estimate = dataclasses.replace(estimate, exploration={**cost.to_dict(outcome["kind"]), **outcome})
         output.set_value(estimate)
 
     def _TableTop(self, context: Context):

@@ -86,7 +86,10 @@ class ShapeResemblancePrimitive(VisualPrimitive):
     _INTERNAL_SIZE = scores.FeatureStatistics.SIZE
 
     def __init__(self, shape: str, intrinsics: CameraIntrinsics, period: float,
-                 params: ResemblanceParams | None = None, score_params: scores.ScoreParams | None = None):
+                 params: ResemblanceParams | None = None, score_params: scores.ScoreParams | None = None,
+                 confirm_time: float | None = None):
+        """`confirm_time` (s): under CONFIRM the arc starts at once and lasts this long (the minimal
+        exploration's confirming arc); None: CONFIRM runs the arc as EXPLORE does."""
         super().__init__(period)
         if shape not in scores.SHAPES:
             raise ValueError(f"unknown shape {shape!r}; expected one of {scores.SHAPES}")
@@ -95,6 +98,8 @@ class ShapeResemblancePrimitive(VisualPrimitive):
         self.params = params or DEFAULT_ARCS[shape]
         self.params.validate()
         self.score_params = score_params or scores.ScoreParams()
+        self._confirm_params = self.params if confirm_time is None else dataclasses.replace(
+            self.params, arc_start=0.0, arc_period=confirm_time, arc_sweeps=1)
         self._centre_port = self.DeclareVectorInputPort("centre", 3)
         self._axis_port = self.DeclareVectorInputPort("axis", 3)
         self._resemblance = self.DeclareDiscreteState(np.zeros(1))
@@ -112,7 +117,7 @@ class ShapeResemblancePrimitive(VisualPrimitive):
 
     def DoUpdate(self, context: Context, discrete_state, sample: CameraSample, new_sample: bool,
                  command: PrimitiveCommand, explore_time: float | None) -> np.ndarray:
-        if command != PrimitiveCommand.EXPLORE:
+        if not command.exploring:
             return np.zeros(6)  # this primitive only acts while exploring
         frame = context.get_discrete_state(self._frame).get_value().copy()
         internal = context.get_discrete_state(self._internal).get_value().copy()
@@ -143,7 +148,7 @@ class ShapeResemblancePrimitive(VisualPrimitive):
             SetDiscreteGroup(discrete_state, self._resemblance, [evidence.resemblance(self.shape)])
             SetDiscreteGroup(discrete_state, self._evidence, evidence.to_vector())
         SetDiscreteGroup(discrete_state, self._internal, internal)
-        p = self.params
+        p = self._confirm_params if command == PrimitiveCommand.CONFIRM else self.params
         if p.arc_about == "none" or sample.silhouette is None:
             return np.zeros(6)
         return self.ArcTwist(discrete_state, sample, centre, a if p.arc_about == "axis" else b, explore_time, p)
