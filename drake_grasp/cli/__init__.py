@@ -47,6 +47,7 @@ def _parser() -> argparse.ArgumentParser:
     studies.add_capture(sub)
     studies.add_sensitivity(sub)
     studies.add_near_primitives(sub)
+    studies.add_exploration(sub)
     sweeps.add_reproduce(sub)
     single.add_plan_eigengrasp(sub)
     single.add_resemble(sub)

@@ -171,6 +171,7 @@ STUDIES = (
     ("sensitivity", "sensitivity of the chosen grasps", "drake-grasp sensitivity --out {out}/sensitivity"),
     ("near_primitives", "shape resemblance on near-primitives",
      "drake-grasp near-primitives --out {out}/near_primitives"),
+    ("exploration", "the paper's proposed minimal exploration", "drake-grasp exploration --out {out}/exploration"),
 )
 
 
