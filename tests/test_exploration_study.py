@@ -2,6 +2,8 @@
 
 import json
 
+import pytest
+
 from drake_grasp import cli
 from drake_grasp.studies import exploration
 
@@ -53,3 +55,18 @@ def test_the_command_refuses_bad_numbers_in_one_line(capsys):
     assert cli.main(["exploration", "--flower", "-2"]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "--flower must be >= 0" in err
+
+
+@pytest.mark.slow
+def test_the_study_runs_both_explorations_and_resumes(tmp_path):
+    # Real trials: a ball, one seed, after the full and the minimal exploration (about a minute).
+    from drake_grasp.sweeps.executors import LocalExecutor
+
+    config = exploration.ExplorationConfig.quick(paper=("sphere:0.1",))
+    rows, lines, figures = exploration.run_study(config, tmp_path, LocalExecutor(1))
+    assert len(rows) == 1 and all(p.stat().st_size > 1000 for p in figures)
+    pair = rows[0]
+    assert exploration.cost(pair.full)["kind"] == "full" and exploration.cost(pair.minimal)["kind"] == "confirmed"
+    assert exploration.chosen(pair.full) == exploration.chosen(pair.minimal) == "spherical"
+    again, _, _ = exploration.run_study(config, tmp_path, LocalExecutor(1))  # resumes: nothing to run
+    assert [(p.full, p.minimal) for p in again] == [(pair.full, pair.minimal)]
