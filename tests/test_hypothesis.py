@@ -25,3 +25,6 @@ def test_one_arc_confirms_or_leaves_the_hypothesis_open():
     assert not confirm(round_, 1.0, 0.3).confirmed  # an upright cylinder or a cube: the full exploration
     assert confirm(hypothesis_from_views(2.5, flat=0.9), math.nan, math.nan).shape == "flat"
     assert not confirm(hypothesis_from_views(1.3), 1.0, 1.0).confirmed
+    # Too few views to score (the scorer's zero invariances): never confirmed, whatever the numbers say.
+    unmeasured = confirm(elongated, 0.0, 0.0, measured=False)
+    assert not unmeasured.confirmed and "too few views" in unmeasured.why

@@ -91,12 +91,16 @@ class Confirmation:
         return self.shape is not None
 
 
-def confirm(hypothesis: Hypothesis, invariance_a: float, sphere: float, clear: float = CLEAR) -> Confirmation:
+def confirm(hypothesis: Hypothesis, invariance_a: float, sphere: float, clear: float = CLEAR,
+            measured: bool = True) -> Confirmation:
     """Whether the confirming arc confirmed the hypothesis: `invariance_a` is I_a over the arc about the
     axis, `sphere` the sphere score over the arc about the cross axis (`scores.ShapeEvidence`); `clear`
-    the threshold."""
+    the threshold; `measured` False when the arc gathered too few views to score (the scorer then
+    gives zero invariances about both axes, which no measured arc does)."""
     if hypothesis.kind == FLAT:
         return Confirmation("flat", f"flat from depth (flat resemblance {hypothesis.flat:.2f})")
+    if hypothesis.kind in (ELONGATED_SHAPE, ROUND_SHAPE) and not measured:
+        return Confirmation(None, f"{hypothesis.kind}, but the confirming arc gathered too few views to score")
     if hypothesis.kind == ELONGATED_SHAPE:
         if not math.isfinite(invariance_a):
             return Confirmation(None, "elongated, but the arc about its axis measured nothing")

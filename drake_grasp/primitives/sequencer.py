@@ -219,7 +219,9 @@ class ExplorationSequencer(LeafSystem):
                     phase = ExplorationPhase.DONE if verdict.confirmed else ExplorationPhase.DEPTH_AXIS
         elif phase == ExplorationPhase.CONFIRM and elapsed >= p.minimal.confirm_time - 1e-9:
             evidence = np.asarray(self._evidence_port.Eval(context), float)
-            verdict = hypothesis.confirm(guess, float(evidence[3]), float(evidence[6]), p.minimal.clear)
+            # [V_a, V_b, e0, I_a, I_b, ...]: both invariances 0 only when the arc gave too few views.
+            measured = evidence[3] > 0.0 or evidence[4] > 0.0
+            verdict = hypothesis.confirm(guess, float(evidence[3]), float(evidence[6]), p.minimal.clear, measured)
             phase = ExplorationPhase.DONE if verdict.confirmed else ExplorationPhase.DEPTH_AXIS
         elif phase == ExplorationPhase.DEPTH_AXIS and elapsed >= p.depth_axis_time - 1e-9:
             phase = ExplorationPhase.RESEMBLANCE
