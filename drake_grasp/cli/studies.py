@@ -1,6 +1,7 @@
 """The studies beyond the paper: capture (how much estimate error a grasp absorbs, in full dynamics),
-sensitivity (the chosen grasps under other friction, mass and perception) and near-primitives (shape
-resemblance on almost-spheres, -boxes and -cylinders).
+sensitivity (the chosen grasps under other friction, mass and perception), near-primitives (shape
+resemblance on almost-spheres, -boxes and -cylinders) and exploration (the paper's proposed minimal
+exploration against the full one).
 
 Like the sweeps (`sweeps`), each runs many trials on an executor, resumably, into a results folder it
 holds the lock of, and prints a summary (or one JSON object with --json).
