@@ -18,6 +18,7 @@ written like the novel objects' (`novel.obj_text`).
 
 from __future__ import annotations
 
+import csv
 import dataclasses
 import json
 from pathlib import Path
@@ -122,8 +123,9 @@ def flower_object(seed: int, index: int) -> FlowerObject:
 
 
 def generate(count: int, seed: int, out_dir: str | Path) -> list[dict]:
-    """Writes objects 0..count-1 of `seed` as OBJ files into `out_dir` with ``manifest.json``;
-    returns the manifest rows ({"file", "class", "seed", "index", "extents_m"})."""
+    """Writes objects 0..count-1 of `seed` as OBJ files into `out_dir` with ``manifest.json`` and
+    ``manifest.csv``, as the other generators do; returns the manifest rows ({"file", "class", "seed",
+    "index", "extents_m"})."""
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     rows = []
@@ -134,4 +136,9 @@ def generate(count: int, seed: int, out_dir: str | Path) -> list[dict]:
         rows.append({"file": file, "class": obj.shape_class, "seed": seed, "index": index,
                      "extents_m": [round(float(e), 6) for e in obj.mesh.extents]})
     (out_dir / "manifest.json").write_text(json.dumps(rows, indent=1) + "\n")
+    with open(out_dir / "manifest.csv", "w", newline="") as f:
+        writer = csv.DictWriter(f, fieldnames=["file", "class", "seed", "index", "extents_m"], lineterminator="\n")
+        writer.writeheader()
+        for row in rows:
+            writer.writerow({**row, "extents_m": " ".join(f"{e:.6f}" for e in row["extents_m"])})
     return rows

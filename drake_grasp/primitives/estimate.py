@@ -24,7 +24,7 @@ from drake_grasp.primitives.decision import choose_shape, decision_margin
 from drake_grasp.primitives.depth_views import TableTopVector
 from drake_grasp.primitives.exploration_cost import CostVector
 from drake_grasp.primitives.estimators import is_upright
-from drake_grasp.primitives.flat import flat_resemblance
+from drake_grasp.primitives.flat import table_top_flatness
 from drake_grasp.primitives.scores import SHAPES
 from drake_grasp.primitives.sequencer import ExplorationPhase, phase_value
 from drake_grasp.primitives.silhouette import CameraSample
@@ -283,7 +283,7 @@ def with_table_top(estimate: ObjectEstimate, table_top, elongated: bool) -> Obje
                                                "extents": [float(x) for x in spread.extents]}
     silhouettes = {"centre": estimate.centre, "principal_axis": estimate.principal_axis, "axes": estimate.axes,
                    "extents": estimate.extents}
-    flat, flat_evidence = flat_resemblance(float(t.height), spans_sides)
+    flat, flat_evidence = table_top_flatness(t)
     centre = np.asarray(t.centre, float).copy()
     return dataclasses.replace(
         estimate, centre=centre, depth=float(np.linalg.norm(centre - estimate.camera_position)), axes=axes,
@@ -321,7 +321,7 @@ class ObjectEstimator(LeafSystem):
         for shape in SHAPES:
             self.DeclareVectorInputPort(f"{shape}_resemblance", 1)
         self.DeclareVectorInputPort("evidence", 9)
-        self._table_top_port = self.DeclareVectorInputPort("table_top", 25)
+        self._table_top_port = self.DeclareVectorInputPort("table_top", TableTopVector.SIZE)
         self._cost_port = self.DeclareVectorInputPort("exploration_cost", CostVector.SIZE)
         self._outcome_port = self.DeclareAbstractInputPort("exploration_outcome", AbstractValue.Make({"kind": "full"}))
         self.DeclareAbstractOutputPort("estimate", lambda: AbstractValue.Make(ObjectEstimate(status=OBJECT_NOT_FOUND)),
@@ -338,7 +338,7 @@ class ObjectEstimator(LeafSystem):
         if self._cost_port.HasValue(context):
             cost = CostVector.from_vector(self._cost_port.Eval(context))
             outcome = self._outcome_port.Eval(context) if self._outcome_port.HasValue(context) else {"kind": "full"}
-            estimate = dataclasses.replace(estimate, exploration={**cost.to_dict(outcome["kind"]), **outcome})
+            estimate = dataclasses.replace(estimate, exploration={**outcome, **cost.to_dict()})
         output.set_value(estimate)
 
     def _TableTop(self, context: Context):

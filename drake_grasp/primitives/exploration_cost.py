@@ -45,10 +45,9 @@ class CostVector:
         v = np.asarray(v, float)
         return cls(int(round(v[0])), float(v[1]), float(v[2]), float(v[3]))
 
-    def to_dict(self, kind: str) -> dict:
-        """As the record's `exploration`: what kind of exploration ran (`kind`) and what it cost."""
-        return {"kind": kind, "time_s": self.time, "path_m": self.path, "path_rad": self.turn,
-                "images": self.images}
+    def to_dict(self) -> dict:
+        """What it cost, as the record's `exploration` has it (beside what kind of exploration ran)."""
+        return {"time_s": self.time, "path_m": self.path, "path_rad": self.turn, "images": self.images}
 
 
 def rotation_angle(R_a: np.ndarray, R_b: np.ndarray) -> float:

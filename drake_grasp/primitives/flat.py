@@ -44,3 +44,10 @@ def flat_resemblance(height: float, extents: np.ndarray) -> tuple[float, dict]:
     thin = _step_down(float(height), THIN_HEIGHT, THIN_WIDTH)
     small = _step_down(size, SMALL_SIZE, SMALL_WIDTH)
     return max(thin, small), {"thin": thin, "small": small}
+
+
+def table_top_flatness(estimate) -> tuple[float, dict]:
+    """`flat_resemblance` of a table-top estimate (`table_top.TableTopEstimate`): its height above the
+    table and its spans along its footprint's sides."""
+    return flat_resemblance(float(estimate.height), np.asarray(estimate.extents_sides, float))
+

@@ -34,6 +34,8 @@ from pydrake.systems.framework import Context, LeafSystem
 
 from drake_grasp.primitives import hypothesis
 from drake_grasp.primitives.common import PrimitiveCommand
+from drake_grasp.primitives.depth_views import TableTopVector
+from drake_grasp.primitives.flat import table_top_flatness
 from drake_grasp.primitives.scores import SHAPES
 from drake_grasp.primitives.silhouette import CameraSample
 
@@ -169,7 +171,7 @@ class ExplorationSequencer(LeafSystem):
         self._camera_sample_port = self.DeclareVectorInputPort("camera_sample", CameraSample.SIZE)
         self._axis_info_port = self.DeclareVectorInputPort("axis_info", 3)
         self._evidence_port = self.DeclareVectorInputPort("evidence", 9)
-        self._table_top_port = self.DeclareVectorInputPort("table_top", 25)
+        self._table_top_port = self.DeclareVectorInputPort("table_top", TableTopVector.SIZE)
         self._state = self.DeclareAbstractState(AbstractValue.Make(SequencerState()))
         ticket = {self.abstract_state_ticket(self._state)}
         for index, name in enumerate(("depth_command", "axis_command", "resemblance_command")):
@@ -239,12 +241,9 @@ class ExplorationSequencer(LeafSystem):
         p = self.params.minimal
         flat = math.nan
         if self._table_top_port.HasValue(context):
-            from drake_grasp.primitives.depth_views import TableTopVector
-            from drake_grasp.primitives.flat import flat_resemblance
-
             top = TableTopVector.from_vector(self._table_top_port.Eval(context)).estimate
             if top is not None:
-                flat, _ = flat_resemblance(float(top.height), np.asarray(top.extents_sides, float))
+                flat, _ = table_top_flatness(top)
         eccentricity = float(self._axis_info_port.Eval(context)[1]) if self._axis_info_port.HasValue(context) \
             else math.nan
         return hypothesis.hypothesis_from_views(eccentricity, flat, p.elongated, p.round)

@@ -71,16 +71,6 @@ class ExplorationConfig:
         return cls(**{"trials": 1, "near": 0, "novel": 0, "flower": 0, "paper": QUICK_OBJECTS, **overrides})
 
 
-def _with_csv_manifest(generate):
-    """A generator for `ensure_generated`, which also moves a manifest.csv into place."""
-    def run(staging):
-        rows = generate(staging)
-        if not (staging / "manifest.csv").is_file():
-            (staging / "manifest.csv").write_text("file,class\n" + "".join(f"{r['file']},{r['class']}\n" for r in rows))
-        return rows
-    return run
-
-
 def study_objects(config: ExplorationConfig, out_dir: pathlib.Path) -> list[tuple[str, str, str]]:
     """(object, set, class) of every object: the paper's by name, the generated ones as files under
     out_dir/objects/<set> (generated once, reused on a rerun)."""
@@ -93,8 +83,7 @@ def study_objects(config: ExplorationConfig, out_dir: pathlib.Path) -> list[tupl
             ("flower", config.flower, lambda d: flower.generate(config.flower, config.object_seed, d)))
     for name, count, generate in sets:
         if count:
-            rows = ensure_generated(out_dir / "objects" / name, _with_csv_manifest(generate), count,
-                                    (config.object_seed,))
+            rows = ensure_generated(out_dir / "objects" / name, generate, count, (config.object_seed,))
             objects += [(row["file"], name, row["class"]) for row in rows]
     return objects
 

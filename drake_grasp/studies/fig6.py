@@ -132,12 +132,12 @@ def chosen_grasp(stats: dict[str, GraspStats]) -> str | None:
 
     Oracle trials measure no resemblance: their choice is the grasp of the object's true class.
     """
+    from drake_grasp.grasps import GRASP_OF_SHAPE
     from drake_grasp.primitives.decision import choose_shape
 
     measured = {RESEMBLANCE_OF[g]: s.resemblance for g, s in stats.items() if np.isfinite(s.resemblance)}
     if measured:
-        shape = choose_shape(measured)
-        return next(g for g, r in RESEMBLANCE_OF.items() if r == shape)
+        return GRASP_OF_SHAPE[choose_shape(measured)]
     for g, s in stats.items():
         if s.truth_class is not None and RESEMBLANCE_OF[g] == s.truth_class:
             return g
