@@ -29,7 +29,8 @@ model and no contact planning: the hand's compliance does the rest.
   short of the face, so that the proximal links meet the top edges at about 45 degrees and the distal
   links wrap down the sides.
 
-The object rests on a table whose height the estimate gives (the object's bottom). Closing from
+The object rests on a table whose height the estimate gives (`ObjectEstimate.table_height`: the
+table-top estimate's reference plane where it has one, else the object's estimated bottom). Closing from
 above, the BarrettHand's bent fingertips sweep about 10 cm beyond the palm: a palm brought lower
 would drive the fingertips into the table before they reach a small object (they would stall there
 and break away). So a top-down grasp never brings the palm closer to the table than that sweep plus
@@ -61,6 +62,7 @@ TABLE_CLEARANCE = 0.005
 PRECISION_CLEARANCE = 0.002
 # Approaches within this angle of the vertical are "from above" for the table clearance.
 _FROM_ABOVE = math.radians(45.0)
+_DOWN = np.array([0.0, 0.0, -1.0])
 
 
 class GraspType(enum.Enum):
@@ -88,6 +90,9 @@ class ObjectEstimate:
         size: the object's extent along each of those axes, m.
         principal_axis: unit vector of the elongation (None for objects with no long axis).
         source: where the estimate came from ("oracle", "camera").
+        table_z: the height of the table the object rests on, m, where it is known (the table-top
+            estimate measures heights from it); None: the object's bottom, the centre less its half
+            extent along the vertical (`table_height`).
     """
 
     center: np.ndarray
@@ -95,6 +100,7 @@ class ObjectEstimate:
     size: np.ndarray
     principal_axis: np.ndarray | None = None
     source: str = "oracle"
+    table_z: float | None = None
 
     def __post_init__(self):
         for name in ("center", "R_WB", "size"):
@@ -108,6 +114,19 @@ class ObjectEstimate:
         """Half the object's (box) extent along a world direction, m."""
         d = np.asarray(direction_W, float)
         return 0.5 * float(np.abs(np.asarray(self.R_WB).T @ d) @ np.asarray(self.size))
+
+    @property
+    def table_height(self) -> float:
+        """The table's height, m: `table_z` where it is known, else the object's estimated bottom.
+
+        Why both: a from-above grasp stops its palm a fixed sweep above the table, so an error in the
+        table's height is an error in where the fingertips pass. The bottom of an estimate carries the
+        estimate's errors in centre and height (2.7 mm low on the apple with the table-top estimate:
+        the spherical grasp then lifted without it, docs/results/fig6_table_top/summary.md).
+        """
+        if self.table_z is not None:
+            return float(self.table_z)
+        return float(np.asarray(self.center)[2]) - self.half_extent_along(_DOWN)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -147,16 +166,13 @@ def _palm_rotation(approach_W: np.ndarray, x_hint_W: np.ndarray) -> RotationMatr
     return RotationMatrix(np.column_stack([x, np.cross(z, x), z]))
 
 
-_DOWN = np.array([0.0, 0.0, -1.0])
-
 
 def _clear_of_table(estimate: ObjectEstimate, R_WP: RotationMatrix, target: np.ndarray, spread: float) -> np.ndarray:
     """Raises a from-above palm target so that the closing fingertips pass above the table."""
     approach = R_WP.col(2)
     if np.dot(approach, _DOWN) < math.cos(_FROM_ABOVE):
         return target
-    table_z = float(np.asarray(estimate.center)[2]) - estimate.half_extent_along(_DOWN)
-    lowest_palm = table_z + (hand.fingertip_sweep_depth(spread) + TABLE_CLEARANCE) / np.dot(approach, _DOWN)
+    lowest_palm = estimate.table_height + (hand.fingertip_sweep_depth(spread) + TABLE_CLEARANCE) / np.dot(approach, _DOWN)
     if target[2] >= lowest_palm:
         return target
     return target + (lowest_palm - target[2]) / np.dot(-approach, [0.0, 0.0, 1.0]) * -approach
@@ -229,8 +245,7 @@ def precision_grasp(estimate: ObjectEstimate) -> GraspPlan:
     _, long_axis, _ = _top_face_axes(R, np.asarray(estimate.size, float))
     R_WP = _palm_rotation(_DOWN, R[:, long_axis])  # fingers close along the short side
     spread = ComplianceMode.CYLINDRICAL.spread
-    table_z = float(np.asarray(estimate.center)[2]) - estimate.half_extent_along(_DOWN)
-    palm_z = table_z + hand.fingertip_sweep_depth(spread) + PRECISION_CLEARANCE
+    palm_z = estimate.table_height + hand.fingertip_sweep_depth(spread) + PRECISION_CLEARANCE
     target = np.array([estimate.center[0], estimate.center[1], palm_z], float)
     return GraspPlan(GraspType.PRECISION, spread, RigidTransform(R_WP, target))
 

@@ -104,6 +104,22 @@ def test_precision_grasp_sweeps_the_fingertips_along_the_table(height):
     assert GraspType.parse("Precision") == GraspType.PRECISION
 
 
+@pytest.mark.parametrize("grasp", [spherical_grasp, box_grasp, precision_grasp])
+def test_a_known_table_height_places_the_sweep_whatever_the_estimated_bottom(grasp):
+    """Where the table's height is known (the table-top estimate's reference plane), the fingertips'
+    sweep is placed from it, not from the estimate's bottom: an estimate 3 mm too low and too tall
+    (the apple's, with the table-top estimate) places the palm as the true one does."""
+    true = _estimate([0.5, 0.0, 0.0175], [0.11, 0.07, 0.035], axis=[1, 0, 0])
+    low = _estimate([0.5, 0.0, 0.0165], [0.11, 0.07, 0.039], axis=[1, 0, 0])
+    assert low.table_height == pytest.approx(true.table_height - 0.003)
+    known = ObjectEstimate(low.center, low.R_WB, low.size, low.principal_axis, table_z=0.0)
+    assert known.table_height == 0.0
+    np.testing.assert_allclose(grasp(known).X_WP_target.translation(), grasp(true).X_WP_target.translation(),
+                               atol=1e-12)
+    assert grasp(low).X_WP_target.translation()[2] == pytest.approx(
+        grasp(true).X_WP_target.translation()[2] - 0.003)
+
+
 def test_oracle_estimate_is_the_ground_truth():
     spec = paper_object("bottle_case")
     X_WO = RigidTransform(RollPitchYaw(0, 0, 0.3), [0.5, 0.1, spec.rest_height])

@@ -148,10 +148,10 @@ def test_min_area_rectangle_of_a_rotated_rectangle():
 def test_the_estimate_takes_the_table_top_centre_axes_and_extents():
     top = _rotated_box_top((0.52, 0.01), 0.12, 0.05, 0.04, math.radians(30))
     t = table_top.estimate(_map_of(_surface_points(top, np.arange(0.40, 0.65, 0.001), np.arange(-0.12, 0.13, 0.001))))
-    vector = TableTopVector(t, table_top.Spread(0.001, 0.5, np.full(3, 0.001)), False, 24)
+    vector = TableTopVector(t, table_top.Spread(0.001, 0.5, np.full(3, 0.001)), False, 24, 0.002)
     again = TableTopVector.from_vector(vector.to_vector())
     np.testing.assert_allclose(again.estimate.centre, t.centre)
-    assert again.views == 24 and again.spread.axis_deg == 0.5
+    assert again.views == 24 and again.spread.axis_deg == 0.5 and again.table_height == 0.002
     args = (ExplorationPhase.DONE, np.array([0.5, 0.0, 0.02]), np.array([0.5, 0.0, 0.35]),
             np.array([1.0, 0.0, 0.0]), np.array([1.0, 1.5, 0.0]), np.array([0.1, 0.06, 0.05]),
             {"sphere": 0.1, "cylinder": 0.2, "box": 0.9}, np.zeros(9), np.array([1.0, 0.0, 0.0]))
@@ -161,7 +161,8 @@ def test_the_estimate_takes_the_table_top_centre_axes_and_extents():
     np.testing.assert_allclose(estimate.centre, t.centre)
     assert abs(estimate.principal_axis @ t.principal_axis) > 0.999  # elongated: the solid's axis
     np.testing.assert_allclose(estimate.extents, t.extents_axis)
-    assert estimate.table_top["views"] == 24
+    assert estimate.table_top["views"] == 24 and estimate.table_top["table_z"] == 0.002
+    assert estimate.as_grasp_estimate().table_z == 0.002 and silhouettes.as_grasp_estimate().table_z is None
     np.testing.assert_allclose(estimate.table_top["silhouettes"]["centre"], [0.5, 0.0, 0.02])
     assert {s: estimate.resemblances[s] for s in silhouettes.resemblances} == silhouettes.resemblances
     # 4 cm tall and 12 cm long: neither thin nor small, so the flat resemblance stays low.

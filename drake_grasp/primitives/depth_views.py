@@ -29,15 +29,17 @@ class TableTopVector:
 
     valid (1: an estimate), centre (3), principal_axis (3), sides (3), extents_axis (3),
     extents_sides (3), height, cells, clipped (1: the object overran the map), views; then the spread
-    of the two halves: centre, axis_deg, extents (3) (NaN while either half has no estimate).
+    of the two halves: centre, axis_deg, extents (3) (NaN while either half has no estimate); and the
+    table's height, the height map's reference plane (what the object stands on, known to the scene).
     """
 
-    SIZE = 25
+    SIZE = 26
 
     estimate: table_top.TableTopEstimate | None
     spread: table_top.Spread | None
     clipped: bool
     views: int
+    table_height: float = 0.0
 
     def to_vector(self) -> np.ndarray:
         v = np.full(self.SIZE, np.nan)
@@ -50,6 +52,7 @@ class TableTopVector:
         v[18], v[19] = float(self.clipped), float(self.views)
         if self.spread is not None:
             v[20], v[21], v[22:25] = self.spread.centre, self.spread.axis_deg, self.spread.extents
+        v[25] = self.table_height
         return v
 
     @classmethod
@@ -62,7 +65,7 @@ class TableTopVector:
                 extents_axis=v[10:13].copy(), extents_sides=v[13:16].copy(), height=float(v[16]),
                 cells=int(v[17]))
         spread = None if not math.isfinite(v[20]) else table_top.Spread(float(v[20]), float(v[21]), v[22:25].copy())
-        return cls(estimate, spread, bool(v[18] > 0.5), int(v[19]))
+        return cls(estimate, spread, bool(v[18] > 0.5), int(v[19]), float(v[25]))
 
 
 class DepthViews(LeafSystem):
@@ -75,7 +78,7 @@ class DepthViews(LeafSystem):
         X_WC (RigidTransform): the camera's pose.
         active (1): 0 stops the views (the exploration is over); unconnected, always active.
     Output ports:
-        table_top (25): `TableTopVector`, computed from the state (only when a view changed it).
+        table_top (26): `TableTopVector`, computed from the state (only when a view changed it).
     """
 
     # The state's head: [origin set (1/0), origin x, origin y, views, clipped]; the two maps follow.
@@ -154,7 +157,7 @@ def table_top_vector(maps: tuple[table_top.HeightMap, table_top.HeightMap], view
     whole = table_top.estimate(both, min_cells)
     halves = [table_top.estimate(m, min_cells) for m in maps]
     bracket = 0.0 if whole is None else whole.centre_bracket
-    return TableTopVector(whole, table_top.spread(*halves, both.cell, bracket), both.clipped, views)
+    return TableTopVector(whole, table_top.spread(*halves, both.cell, bracket), both.clipped, views, both.table_height)
 
 
 class TableTopFrame(LeafSystem):
@@ -166,7 +169,7 @@ class TableTopFrame(LeafSystem):
     object's top.
 
     Input ports:
-        table_top (25): `TableTopVector`.
+        table_top (26): `TableTopVector`.
     Output ports:
         centre (3), axis (3): world frame (m; unit vector), NaN before an estimate.
     """

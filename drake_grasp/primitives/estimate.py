@@ -60,7 +60,9 @@ class ObjectEstimate:
         table_top: with the table-top estimate (a scenario's `perception.table_top`), what it rests on
             and how sure it is: {"views", "cells", "clipped", "uncertainty": {"centre" (m),
             "axis_deg", "extents" (m, 3)}, "silhouettes": the silhouettes' own centre, principal
-            axis, axes and extents, which it replaced}; None without it (and left out of `to_dict`).
+            axis, axes and extents, which it replaced; "table_z": the table's height, m, the height
+            map's reference plane, which the grasps take as the table}; None without it (and left out
+            of `to_dict`).
         exploration: what the exploration was and cost (`primitives.exploration_cost`): {"kind" ("full":
             the paper's exploration; "confirmed" or "fallback": the minimal one's hypothesis confirmed,
             or not and the full exploration ran after it), "time_s", "path_m", "path_rad", "images",
@@ -129,9 +131,10 @@ class ObjectEstimate:
 
         if self.problem():
             raise ValueError(f"no estimate: {self.problem()}")
+        table_z = None if self.table_top is None else self.table_top.get("table_z")
         return GraspEstimate(center=np.array(self.centre), R_WB=np.array(self.axes), size=np.array(self.extents),
                              principal_axis=None if self.principal_axis is None else np.array(self.principal_axis),
-                             source="camera")
+                             source="camera", table_z=None if table_z is None else float(table_z))
 
     def to_dict(self) -> dict:
         """Plain data (lists, floats) for JSON."""
@@ -291,7 +294,7 @@ def with_table_top(estimate: ObjectEstimate, table_top, elongated: bool) -> Obje
         resemblances={**estimate.resemblances, "flat": flat},
         evidence={**estimate.evidence, **flat_evidence},
         table_top={"views": table_top.views, "cells": t.cells, "clipped": table_top.clipped,
-                   "uncertainty": uncertainty, "silhouettes": silhouettes})
+                   "uncertainty": uncertainty, "silhouettes": silhouettes, "table_z": table_top.table_height})
 
 
 class ObjectEstimator(LeafSystem):
@@ -305,7 +308,7 @@ class ObjectEstimator(LeafSystem):
         axis (3), axis_info (3): from the principal axis primitive.
         sphere_resemblance, cylinder_resemblance, box_resemblance (1 each): in [0, 1].
         evidence (9): from the box resemblance primitive (its `evidence` output).
-        table_top (25, optional): `depth_views.TableTopVector`; unconnected, the silhouettes' estimate.
+        table_top (26, optional): `depth_views.TableTopVector`; unconnected, the silhouettes' estimate.
         exploration_cost (4, optional): `exploration_cost.CostVector`, what the exploration cost so far.
         exploration_outcome (abstract dict, optional): the sequencer's `outcome` (what kind of exploration
             ran); unconnected, "full".
