@@ -7,4 +7,4 @@ objects (`objects`: the catalogue, users' files, convex pieces, generators), pur
 documented as public for scripts are in `drake_grasp.api`.
 """
 
-__version__ = "0.1.0"
+__version__ = "0.2.0"
