@@ -166,13 +166,13 @@ def _palm_rotation(approach_W: np.ndarray, x_hint_W: np.ndarray) -> RotationMatr
     return RotationMatrix(np.column_stack([x, np.cross(z, x), z]))
 
 
-
 def _clear_of_table(estimate: ObjectEstimate, R_WP: RotationMatrix, target: np.ndarray, spread: float) -> np.ndarray:
     """Raises a from-above palm target so that the closing fingertips pass above the table."""
     approach = R_WP.col(2)
     if np.dot(approach, _DOWN) < math.cos(_FROM_ABOVE):
         return target
-    lowest_palm = estimate.table_height + (hand.fingertip_sweep_depth(spread) + TABLE_CLEARANCE) / np.dot(approach, _DOWN)
+    sweep = hand.fingertip_sweep_depth(spread) + TABLE_CLEARANCE
+    lowest_palm = estimate.table_height + sweep / np.dot(approach, _DOWN)
     if target[2] >= lowest_palm:
         return target
     return target + (lowest_palm - target[2]) / np.dot(-approach, [0.0, 0.0, 1.0]) * -approach

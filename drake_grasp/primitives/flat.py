@@ -50,4 +50,3 @@ def table_top_flatness(estimate) -> tuple[float, dict]:
     """`flat_resemblance` of a table-top estimate (`table_top.TableTopEstimate`): its height above the
     table and its spans along its footprint's sides."""
     return flat_resemblance(float(estimate.height), np.asarray(estimate.extents_sides, float))
-
