@@ -14,7 +14,7 @@ import math
 
 from drake_grasp import trial
 from drake_grasp.grasps import GraspType
-from drake_grasp.hand import ComplianceMode
+from drake_grasp.robot.hand import ComplianceMode
 from drake_grasp.objects import ObjectSpec, resolve_object
 from drake_grasp.station import Scenario
 

@@ -48,8 +48,8 @@ import math
 import numpy as np
 from pydrake.math import RigidTransform, RotationMatrix
 
-from drake_grasp import hand
-from drake_grasp.hand import ComplianceMode
+from drake_grasp.robot import hand
+from drake_grasp.robot.hand import ComplianceMode
 
 # Height of the finger knuckles' axes behind the palm surface, m (hand.PALM_HEIGHT - hand.DW).
 _KNUCKLE_BEHIND_PALM = hand.PALM_HEIGHT - hand.DW

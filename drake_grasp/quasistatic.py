@@ -32,10 +32,10 @@ from pydrake.multibody.parsing import Parser
 from pydrake.multibody.plant import AddMultibodyPlantSceneGraph
 from pydrake.systems.framework import DiagramBuilder
 
-from drake_grasp import hand
-from drake_grasp.contact import ContactParameters
-from drake_grasp.hand import ComplianceMode
-from drake_grasp.modelgen import HAND_SDF
+from drake_grasp.robot import hand
+from drake_grasp.robot.contact import ContactParameters
+from drake_grasp.robot.hand import ComplianceMode
+from drake_grasp.robot.modelgen import HAND_SDF
 from drake_grasp.objects import AddObject, ObjectSpec, RegisterSupportTable
 from drake_grasp.paths import RegisterPackage
 

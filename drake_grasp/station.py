@@ -45,14 +45,14 @@ from pydrake.multibody.tree import ModelInstanceIndex, PdControllerGains
 from pydrake.systems.framework import Diagram, DiagramBuilder
 from pydrake.systems.sensors import CameraConfig, RgbdSensor
 
-from drake_grasp import arm
-from drake_grasp.contact import ContactParameters
+from drake_grasp.robot import arm
+from drake_grasp.robot.contact import ContactParameters
 from drake_grasp.control.gravity_compensation import GravityCompensation
 from drake_grasp.control.hand_controller import HandController, HandControllerParams, SetHandActuatorGains
 from drake_grasp.objects.drake_model import with_mass_scale
 from drake_grasp.objects import AddObject, ObjectSpec, resolve_object
 from drake_grasp.paths import DIAGRAMS_DIR, RegisterPackage
-from drake_grasp.perception_config import PerceptionConfig
+from drake_grasp.perception.config import PerceptionConfig
 from drake_grasp.protocol import TrialProtocol
 from drake_grasp.yaml_config import load_named
 

@@ -17,7 +17,7 @@ import numpy as np
 from pydrake.math import RigidTransform, RotationMatrix
 
 from drake_grasp.studies import fig4
-from drake_grasp.hand import ComplianceMode
+from drake_grasp.robot.hand import ComplianceMode
 from drake_grasp.objects import cube_object, cylinder_object, sphere_object
 from drake_grasp.quality import grasp_quality
 from drake_grasp.quasistatic import QuasiStaticHand

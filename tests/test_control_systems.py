@@ -14,7 +14,7 @@ from drake_grasp.control.arm_motion import ArmKinematics
 from drake_grasp.control.grasp_executor import GraspExecutor, GraspPhase
 from drake_grasp.control.gravity_compensation import GravityCompensation
 from drake_grasp.grasps import oracle_estimate, plan_compliant_grasp
-from drake_grasp.hand import HandAction
+from drake_grasp.robot.hand import HandAction
 from drake_grasp.objects import paper_object
 from drake_grasp.primitives.estimate import OBJECT_NOT_FOUND, PERCEPTION_FAILED, ObjectEstimator
 from drake_grasp.primitives.sequencer import ExplorationPhase

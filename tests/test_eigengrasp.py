@@ -14,7 +14,8 @@ from baselines.eigengrasp import virtual_contacts as vc
 from baselines.eigengrasp.object_distance import ConvexPiecesDistance, PrimitiveDistance
 from baselines.eigengrasp.planner import EigengraspPlanner, _add_unique
 from baselines.eigengrasp.scene import HandObjectScene
-from drake_grasp import cli, hand
+from drake_grasp import cli
+from drake_grasp.robot import hand
 from drake_grasp.objects import ShapePiece, _cached_hull_obj, paper_object, resolve_object, sphere_object
 from drake_grasp.quality import friction_cone_edges, wrench_space_quality
 

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from pydrake.math import RigidTransform, RollPitchYaw, RotationMatrix
 
-from drake_grasp import hand
+from drake_grasp.robot import hand
 from drake_grasp.grasps import (
     TABLE_CLEARANCE,
     GraspType,
@@ -19,7 +19,7 @@ from drake_grasp.grasps import (
     precision_grasp,
     spherical_grasp,
 )
-from drake_grasp.hand import ComplianceMode
+from drake_grasp.robot.hand import ComplianceMode
 from drake_grasp.objects import paper_object
 from drake_grasp.protocol import TrialProtocol, TrialVariation
 

@@ -10,7 +10,7 @@ from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder
 from pydrake.systems.primitives import ConstantVectorSource, VectorLogSink
 
-from drake_grasp import hand
+from drake_grasp.robot import hand
 from drake_grasp.control.hand_controller import (
     FingerDrive,
     HandController,
@@ -18,8 +18,8 @@ from drake_grasp.control.hand_controller import (
     SetHandActuatorGains,
     advance_fingers,
 )
-from drake_grasp.hand import ComplianceMode, HandAction
-from drake_grasp.modelgen import HAND_SDF
+from drake_grasp.robot.hand import ComplianceMode, HandAction
+from drake_grasp.robot.modelgen import HAND_SDF
 from drake_grasp.paths import RegisterPackage
 
 TIME_STEP = 0.005

@@ -11,14 +11,57 @@ import pytest
 import drake_grasp
 
 
-@pytest.mark.parametrize("old, new", [("drake_grasp.experiments.fig6", "drake_grasp.studies.fig6"),
-                                      ("drake_grasp.experiments.runner", "drake_grasp.sweeps.runner"),
-                                      ("drake_grasp.experiments.results", "drake_grasp.sweeps.results")])
-def test_the_experiments_paths_forward_to_studies_and_sweeps_with_a_deprecation_warning(old, new):
+# Paths of the old layout, removed in release 0.3.0 (CHANGELOG.md): no forwarder is left behind.
+REMOVED = ("drake_grasp.experiments", "drake_grasp.geometry", "drake_grasp.catalogue", "drake_grasp.object_model",
+           "drake_grasp.piece_budget", "drake_grasp.user_objects", "drake_grasp.hand", "drake_grasp.arm",
+           "drake_grasp.contact", "drake_grasp.modelgen", "drake_grasp.perception_config")
+
+
+@pytest.mark.parametrize("old", REMOVED)
+def test_the_old_layouts_paths_are_gone(old):
     sys.modules.pop(old, None)
-    with pytest.warns(DeprecationWarning, match=new.replace(".", r"\.")):
-        module = importlib.import_module(old)
-    assert module is importlib.import_module(new)
+    with pytest.raises(ModuleNotFoundError):
+        importlib.import_module(old)
+
+
+def test_no_module_of_the_package_forwards_to_another():
+    """A forwarder replaces itself in sys.modules; none is left in the package."""
+    root = pathlib.Path(drake_grasp.__file__).parent
+    for path in sorted(root.rglob("*.py")):
+        assert "sys.modules[__name__]" not in path.read_text(), path
+
+
+def test_the_robots_facts_are_one_package_and_the_perception_settings_live_in_perception():
+    from drake_grasp.perception import PerceptionConfig
+    from drake_grasp.robot import arm, contact, hand, modelgen
+
+    assert PerceptionConfig.__module__ == "drake_grasp.perception.config"
+    assert {m.__name__ for m in (arm, contact, hand, modelgen)} == {f"drake_grasp.robot.{n}" for n in
+                                                                    ("arm", "contact", "hand", "modelgen")}
+    root = pathlib.Path(drake_grasp.__file__).parent
+    loose = sorted(p.stem for p in root.glob("*.py"))
+    assert not set(loose) & {"hand", "arm", "contact", "modelgen", "perception_config"}, loose
+
+
+def test_the_model_generator_runs_from_the_command_line(tmp_path, monkeypatch):
+    """`python -m drake_grasp.modelgen` moved: `drake-grasp models` writes the same files."""
+    from drake_grasp import cli
+    from drake_grasp.robot import modelgen
+
+    written = {}
+    monkeypatch.setattr(modelgen, "write_models", lambda: [written.setdefault("hand", modelgen.HAND_SDF)])
+    assert cli.main(["models"]) == 0
+    assert written == {"hand": modelgen.HAND_SDF}
+
+
+def test_the_module_map_names_every_module():
+    """docs/design.md's module map lists every module of the package (its path), and no removed one."""
+    design = (pathlib.Path(drake_grasp.__file__).parents[1] / "docs" / "design.md").read_text()
+    module_map = design.split("## 1. Module map", 1)[1].split("\n## ", 1)[0]
+    for old in ("drake_grasp/hand.py", "drake_grasp/modelgen.py", "perception_config", "experiments/", "geometry/"):
+        assert old not in module_map, old
+    for new in ("robot/hand.py", "robot/arm.py", "robot/contact.py", "robot/modelgen.py", "perception/config.py"):
+        assert new in module_map, new
 
 
 def test_the_sweep_machinery_imports_no_study():

@@ -9,7 +9,7 @@ from pydrake.multibody.plant import AddMultibodyPlantSceneGraph
 from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder
 
-from drake_grasp import modelgen
+from drake_grasp.robot import modelgen
 from drake_grasp.paths import RegisterPackage
 
 
@@ -32,7 +32,7 @@ def _trans(x, y, z):
 def barrett_fingertip(finger, spread, proximal, distal):
     """Fingertip position in frame W, written from the BH8 manual's modified D-H table.
 
-    The numbers are typed here again on purpose (not read from drake_grasp.hand), so that a wrong
+    The numbers are typed here again on purpose (not read from drake_grasp.robot.hand), so that a wrong
     constant in the package cannot hide behind the same wrong constant in the test.
     """
     Aw, A1, A2, A3, D3, Dw = 0.025, 0.050, 0.070, 0.050, 0.0095, 0.0754
@@ -88,7 +88,7 @@ def test_fingertip_matches_dh_table(finger, spread, proximal, distal):
     expected = barrett_fingertip(finger, spread, proximal, distal)
     np.testing.assert_allclose(X_WT.translation(), expected, atol=1e-4)
     # The package's own pure forward kinematics (used to keep fingertips off the table) agrees.
-    from drake_grasp import hand
+    from drake_grasp.robot import hand
     p = hand.distal_points_in_base(finger, spread, proximal, distal, [[hand.A3, hand.D3, 0.0]])[0]
     np.testing.assert_allclose(p, expected, atol=1e-9)
 
@@ -122,8 +122,8 @@ def test_wam_flange_matches_dh_table(q):
 
 
 def test_model_files_are_generated_from_the_facts():
-    assert modelgen.HAND_SDF.read_text() == modelgen.hand_sdf(), "run: python -m drake_grasp.modelgen"
-    assert modelgen.WAM_SDF.read_text() == modelgen.wam_sdf(), "run: python -m drake_grasp.modelgen"
+    assert modelgen.HAND_SDF.read_text() == modelgen.hand_sdf(), "run: drake-grasp models"
+    assert modelgen.WAM_SDF.read_text() == modelgen.wam_sdf(), "run: drake-grasp models"
 
 
 def test_hand_joint_names_ranges_and_masses():

@@ -146,21 +146,6 @@ def test_an_articulated_mjcf_model_is_refused(tmp_path):
         resolve_user_object(str(path))
 
 
-@pytest.mark.parametrize("old, name", [("drake_grasp.catalogue", "paper_object"),
-                                       ("drake_grasp.user_objects", "object_from_mesh"),
-                                       ("drake_grasp.object_model", "AddObject"),
-                                       ("drake_grasp.piece_budget", "budgeted_piece"),
-                                       ("drake_grasp.geometry.novel", "generate")])
-def test_the_old_import_paths_work_for_one_release_with_a_deprecation_warning(old, name):
-    import importlib
-    import sys
-
-    sys.modules.pop(old, None)
-    with pytest.warns(DeprecationWarning, match="deprecated"):
-        module = importlib.import_module(old)
-    assert callable(getattr(module, name))
-
-
 def test_the_note_of_a_joined_hull_set_gives_the_widest_gap_it_bridged(zoo):
     (gaps,) = [c for c in zoo if c.defect == "hull_gaps"]
     _, notes = _load(gaps)

@@ -21,7 +21,7 @@ from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder
 
 from drake_grasp import objects
-from drake_grasp.contact import ContactParameters, rigid_proximity_sdf
+from drake_grasp.robot.contact import ContactParameters, rigid_proximity_sdf
 from drake_grasp.objects import ObjectError
 
 # docs/design.md §4.3's table: extents (x, y, z) in O (m; the banana's y, its sagitta plus diameter, is not

@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 from pydrake.math import RigidTransform, RotationMatrix
 
-from drake_grasp import hand
-from drake_grasp.hand import ComplianceMode
+from drake_grasp.robot import hand
+from drake_grasp.robot.hand import ComplianceMode
 from drake_grasp.objects import cube_object, cylinder_object, sphere_object
 from drake_grasp.quality import grasp_quality
 from drake_grasp.quasistatic import CONTACT_TOLERANCE, QuasiStaticHand

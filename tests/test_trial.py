@@ -70,7 +70,7 @@ def test_a_planned_grasp_runs_through_the_same_runner(short_scenario):
     # A grasp "planned" in the object frame (hand base 0.3 m above the ball's centre, palm down, spread
     # at 60 deg, fingers preshaped to 20 deg): the arm approaches from a retreat along the palm normal
     # to exactly that pose (no contact guard), preshapes, closes, lifts and holds like any trial.
-    from drake_grasp import hand
+    from drake_grasp.robot import hand
 
     X_OH = RigidTransform(RotationMatrix.MakeXRotation(math.pi), [0, 0, 0.10 + hand.PALM_HEIGHT + 0.002])
     q = np.array([math.radians(60)] * 2 + [math.radians(20)] * 3 + [math.radians(20) / 3] * 3)

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from drake_grasp import hand
+from drake_grasp.robot import hand
 
 # --- docs/design.md §4.6 (barrett_eigen.xml). DOF order: [spread, flex_1, flex_2, flex_3], rad. ---
 EIGENGRASPS = np.array([

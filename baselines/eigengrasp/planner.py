@@ -33,8 +33,8 @@ from pydrake.math import RigidTransform
 from baselines.eigengrasp import annealing, energy, eigengrasps, search_space
 from baselines.eigengrasp.scene import HandObjectScene
 from baselines.eigengrasp.virtual_contacts import FRICTION, contact_frames_for_posture
-from drake_grasp import hand
-from drake_grasp.contact import ContactParameters
+from drake_grasp.robot import hand
+from drake_grasp.robot.contact import ContactParameters
 from drake_grasp.objects import ObjectSpec
 from drake_grasp.quality import friction_cone_edges, grasp_quality
 from drake_grasp.quasistatic import Contact, QuasiStaticHand

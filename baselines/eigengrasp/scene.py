@@ -28,9 +28,9 @@ from pydrake.systems.framework import DiagramBuilder
 
 from baselines.eigengrasp.object_distance import ConvexPiecesDistance, PrimitiveDistance
 from baselines.eigengrasp.virtual_contacts import VIRTUAL_CONTACTS
-from drake_grasp import hand
-from drake_grasp.contact import ContactParameters
-from drake_grasp.modelgen import HAND_SDF
+from drake_grasp.robot import hand
+from drake_grasp.robot.contact import ContactParameters
+from drake_grasp.robot.modelgen import HAND_SDF
 from drake_grasp.objects import AddObject, ObjectSpec, RegisterSupportTable
 from drake_grasp.paths import RegisterPackage
 

@@ -23,7 +23,7 @@ from pydrake.common.eigen_geometry import Quaternion
 from pydrake.math import RigidTransform, RotationMatrix
 
 from baselines.eigengrasp import eigengrasps
-from drake_grasp import hand
+from drake_grasp.robot import hand
 
 M_PER_MM = 1e-3
 

@@ -4,7 +4,7 @@ GraspIt!'s contact energy (docs/design.md §4.6) measures how well a set of *vir
 each a point with an outward normal, lies on the object. The Barrett's set
 (models/robots/Barrett/virtual/all_16_contacts.xml) has 19: 4 on the palm, 2 on each of the 6 finger
 links, 1 on each fingertip; links and palm carry friction 0.2, fingertips 1.0 (its ``sCof``). We
-place the same set on *our* model's collision shapes (drake_grasp/modelgen.py), on the surfaces that
+place the same set on *our* model's collision shapes (drake_grasp/robot/modelgen.py), on the surfaces that
 face the object when grasping:
 
 * palm: on the palm surface (``PALM_HEIGHT`` above the hand base), at ``PALM_CONTACT_RADIUS`` from
@@ -31,7 +31,7 @@ import math
 
 import numpy as np
 
-from drake_grasp import hand
+from drake_grasp.robot import hand
 
 # --- Placement on our model (assumed unless marked). -----------------------------------------------
 PALM_CONTACT_RADIUS = 0.020  # m from the palm centre (assumed; inside the 44.5 mm palm disc).

@@ -12,7 +12,8 @@ The commands, one module per kind (each adds its parsers and runs them):
 * `single`: demo, trial, plan-eigengrasp, resemble (one run in this process);
 * `sweeps`: fig4, fig6, fig7, novel, reproduce (many trials on an executor, resumable);
 * `studies`: capture, sensitivity, near-primitives (beyond the paper, the same way);
-* `object_tools`: objects generate;
+* `object_tools`: objects generate, objects check;
+* `models`: the robot's SDF files from its facts;
 * `common`: the options and input checks they share, and how a single run's result is printed.
 """
 
@@ -21,7 +22,7 @@ import signal
 import sys
 import threading
 
-from drake_grasp.cli import object_tools, single, studies, sweeps
+from drake_grasp.cli import models, object_tools, single, studies, sweeps
 from drake_grasp.cli.common import UsageError
 
 __all__ = ["Terminated", "UsageError", "main"]
@@ -52,6 +53,7 @@ def _parser() -> argparse.ArgumentParser:
     single.add_plan_eigengrasp(sub)
     single.add_resemble(sub)
     object_tools.add_objects(sub)
+    models.add_models(sub)
     return parser
 
 

@@ -11,7 +11,7 @@ import pathlib
 
 from drake_grasp.cli.common import (UsageError, add_common, add_mesh_options, check_out_dir, check_planner_args,
                                     check_seed, emit, jsonable, resolve_object_arg, save_record, single_run_inputs)
-from drake_grasp.hand import ComplianceMode
+from drake_grasp.robot.hand import ComplianceMode
 
 
 def add_demo(sub) -> None:

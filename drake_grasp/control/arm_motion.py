@@ -17,7 +17,7 @@ from pydrake.multibody.tree import ModelInstanceIndex
 from pydrake.solvers import Solve
 from pydrake.trajectories import PiecewisePolynomial
 
-from drake_grasp.hand import HAND_JOINTS
+from drake_grasp.robot.hand import HAND_JOINTS
 
 
 class ReachError(RuntimeError):

@@ -27,7 +27,7 @@ from pydrake.multibody.plant import MultibodyPlant
 from pydrake.multibody.tree import Frame, JacobianWrtVariable, ModelInstanceIndex
 from pydrake.systems.framework import Context, LeafSystem
 
-from drake_grasp import arm
+from drake_grasp.robot import arm
 
 
 @dataclasses.dataclass

@@ -23,7 +23,7 @@ from pydrake.systems.framework import BasicVector, Context, DiagramBuilder, Leaf
 
 from drake_grasp.control.arm_motion import ArmKinematics, JointPath
 from drake_grasp.grasps import GraspPlan
-from drake_grasp.hand import HandAction
+from drake_grasp.robot.hand import HandAction
 from drake_grasp.protocol import ExecutionTimes
 
 

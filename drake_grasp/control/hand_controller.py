@@ -32,15 +32,15 @@ from pydrake.multibody.plant import MultibodyPlant
 from pydrake.multibody.tree import ModelInstanceIndex, PdControllerGains
 from pydrake.systems.framework import Context, DiscreteValues, LeafSystem
 
-from drake_grasp import hand
-from drake_grasp.hand import HAND_JOINTS, HandAction
+from drake_grasp.robot import hand
+from drake_grasp.robot.hand import HAND_JOINTS, HandAction
 
 NUM_FINGERS = 3
 
 
 @dataclasses.dataclass
 class HandControllerParams:
-    """Choices of the simulated hand drive (the facts are in `drake_grasp.hand`).
+    """Choices of the simulated hand drive (the facts are in `drake_grasp.robot.hand`).
 
     Attributes:
         breakaway_torque: proximal torque at which the clutch slips, N*m (GraspIt!: 0.5).

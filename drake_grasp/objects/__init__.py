@@ -19,10 +19,9 @@ The data model's names are imported here; every other public name of these modul
 as ``drake_grasp.objects.<name>`` too, looked up on first use (PEP 562), so that
 ``from drake_grasp.objects import resolve_object`` works without an import cycle.
 
-Moved here (release 0.1 keeps the old paths working, with a DeprecationWarning, for one release):
-``drake_grasp.catalogue``, ``drake_grasp.user_objects`` (now `mesh_files`, `pieces`, `names`),
-``drake_grasp.object_model`` (now `drake_model`), ``drake_grasp.piece_budget`` and
-``drake_grasp.geometry.{cleaning, solid, novel, near_primitives}``.
+Moved here in release 0.1 from ``drake_grasp.catalogue``, ``drake_grasp.user_objects`` (now
+`mesh_files`, `pieces`, `names`), ``drake_grasp.object_model`` (now `drake_model`),
+``drake_grasp.piece_budget`` and ``drake_grasp.geometry``; the old paths were removed in 0.3 (CHANGELOG.md).
 """
 
 from drake_grasp.objects.spec import *  # noqa: F401,F403  (the data model: the package's core names)

@@ -12,7 +12,7 @@ import numpy as np
 from pydrake.math import RigidTransform, RollPitchYaw, RotationMatrix
 from pydrake.multibody.parsing import Parser
 
-from drake_grasp.contact import ContactParameters, compliant_proximity_sdf
+from drake_grasp.robot.contact import ContactParameters, compliant_proximity_sdf
 from drake_grasp.objects.mass_properties import _pose
 from drake_grasp.objects.spec import ObjectSpec, ShapePiece
 

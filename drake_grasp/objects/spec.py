@@ -24,7 +24,7 @@ Conventions (all SI: metres, kilograms, radians):
 
 The model handed to Drake (:func:`object_sdf`, :func:`AddObject`) is one model named ``spec.name``
 with one body also named ``spec.name`` whose frame is O; each piece is one compliant-hydroelastic
-collision geometry (parameters from :class:`drake_grasp.contact.ContactParameters`) and one visual
+collision geometry (parameters from :class:`drake_grasp.robot.contact.ContactParameters`) and one visual
 in the object's colour (default yellow: the paper wrapped its objects in yellow paper).
 
 Generated meshes (the bell pepper's lobed body, the spectacle case's superellipsoid, user-mesh hulls

@@ -9,24 +9,37 @@
 
 The names of all three are importable from here, as they were from the single module
 `drake_grasp.perception` this package replaces.
+
+`config` holds `PerceptionConfig`, the exploration's choices: a part of the station's scenario. The
+station imports it, and `wiring` imports the station, so this package imports nothing eagerly: its
+names are looked up on first use (PEP 562), and `import drake_grasp.perception.config` loads that
+module alone, without an import cycle.
 """
 
-from drake_grasp.perception.evaluation import (  # noqa: F401
-    EstimateErrors, GroundTruth, compare, comparison_record, format_comparison, ground_truth, object_extent,
-    object_support, true_pose,
-)
-from drake_grasp.perception.exploration import (  # noqa: F401
-    ExplorationResult, explore, read_estimate, resemblance_statistics, run_exploration,
-)
-from drake_grasp.perception.wiring import (  # noqa: F401
-    AddExplorationSequencer, AddVisualPrimitives, Exploration, MakeExploration, VisualPrimitives, camera_mount,
-    load_perception_config, object_labels, start_camera_pose, start_configuration, trial_noise_seed,
-)
+import importlib
 
-__all__ = [
-    "AddExplorationSequencer", "AddVisualPrimitives", "EstimateErrors", "Exploration", "ExplorationResult",
-    "GroundTruth", "MakeExploration", "VisualPrimitives", "camera_mount", "compare", "comparison_record", "explore",
-    "format_comparison", "ground_truth", "load_perception_config", "object_extent", "object_labels",
-    "object_support", "read_estimate", "resemblance_statistics", "run_exploration", "start_camera_pose",
-    "start_configuration", "trial_noise_seed", "true_pose",
-]
+# Where each public name lives.
+_WHERE = {
+    "config": ("PerceptionConfig",),
+    "evaluation": ("EstimateErrors", "GroundTruth", "compare", "comparison_record", "format_comparison",
+                   "ground_truth", "object_extent", "object_support", "true_pose"),
+    "exploration": ("ExplorationResult", "explore", "read_estimate", "resemblance_statistics", "run_exploration"),
+    "wiring": ("AddExplorationSequencer", "AddVisualPrimitives", "Exploration", "MakeExploration", "VisualPrimitives",
+               "camera_mount", "load_perception_config", "object_labels", "start_camera_pose", "start_configuration",
+               "trial_noise_seed"),
+}
+_MODULE_OF = {name: module for module, names in _WHERE.items() for name in names}
+
+__all__ = sorted(_MODULE_OF)
+
+
+def __getattr__(name: str):
+    if name in _WHERE:
+        return importlib.import_module(f"{__name__}.{name}")
+    if name in _MODULE_OF:
+        return getattr(importlib.import_module(f"{__name__}.{_MODULE_OF[name]}"), name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def __dir__():
+    return sorted(set(globals()) | set(_MODULE_OF) | set(_WHERE))

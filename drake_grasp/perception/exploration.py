@@ -18,7 +18,7 @@ from drake_grasp.objects import ObjectSpec
 from drake_grasp.primitives.estimate import ObjectEstimate
 from drake_grasp.primitives.sequencer import ExplorationPhase
 from drake_grasp.simulation import StartSimulation, recording
-from drake_grasp.perception_config import PerceptionConfig
+from drake_grasp.perception.config import PerceptionConfig
 from drake_grasp.station import Scenario
 from drake_grasp.perception.wiring import Exploration, MakeExploration, start_camera_pose, start_configuration
 

@@ -19,7 +19,7 @@ exploration is `drake_grasp.perception.exploration`; measuring an estimate again
 evaluation only, is `drake_grasp.perception.evaluation`.
 
 Choices (rates, gains, arcs, phase durations, score tolerances) are part of the scenario: its
-`perception:` (`perception_config.PerceptionConfig`, numbers in diagrams/station.scenarios.yaml).
+`perception:` (`perception.config.PerceptionConfig`, numbers in diagrams/station.scenarios.yaml).
 """
 
 import dataclasses
@@ -33,7 +33,7 @@ from pydrake.systems.primitives import Adder, ConstantVectorSource
 
 from drake_grasp.control.arm_motion import ArmKinematics
 from drake_grasp.control.camera_motion import CameraTwistController
-from drake_grasp.hand import HAND_JOINTS, HandAction
+from drake_grasp.robot.hand import HAND_JOINTS, HandAction
 from drake_grasp.objects import ObjectSpec
 from drake_grasp.primitives.camera import SilhouetteCamera
 from drake_grasp.primitives.camera_model import CameraIntrinsics
@@ -46,7 +46,7 @@ from drake_grasp.primitives.resemblance import ShapeResemblancePrimitive
 from drake_grasp.primitives.scores import SHAPES
 from drake_grasp.primitives.sequencer import ExplorationSequencer
 from drake_grasp.simulation import AddReplay
-from drake_grasp.perception_config import PerceptionConfig
+from drake_grasp.perception.config import PerceptionConfig
 from drake_grasp.station import DEFAULT_SCENARIO_FILE, MakeStation, Scenario, Station, load_scenario
 
 

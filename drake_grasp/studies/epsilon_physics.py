@@ -67,7 +67,7 @@ def static_grasp(spec) -> StaticGrasp:
     """
     from pydrake.math import RigidTransform
 
-    from drake_grasp import hand
+    from drake_grasp.robot import hand
     from drake_grasp.protocol import TrialVariation
     from drake_grasp.quality import grasp_quality
     from drake_grasp.station import MakeStation

@@ -57,7 +57,7 @@ def fingerprint(task: Task, scenario) -> str:
     import drake_grasp
     from drake_grasp.sweeps.fingerprint import digest, object_fingerprint, scenario_text
 
-    return digest("estimates", drake_grasp.__version__, scenario_text(scenario), object_fingerprint(task.object))
+    return digest("estimates", drake_grasp.BEHAVIOUR_VERSION, scenario_text(scenario), object_fingerprint(task.object))
 
 
 def errors_record(estimate, truth) -> dict:

@@ -113,7 +113,7 @@ class Fig4Config:
 
 def make_object(shape: str, size: float):
     """The Fig. 4 object of a shape family and size, and the compliance mode used on it."""
-    from drake_grasp.hand import ComplianceMode
+    from drake_grasp.robot.hand import ComplianceMode
     from drake_grasp.objects import cube_object, cylinder_object, sphere_object
     from drake_grasp.objects.catalogue import plate_object
 
@@ -133,7 +133,7 @@ def hand_start_pose(spec, axis: str, error: float, clearance: float):
     offset by `error` along the object's x or y, the palm `clearance` above the object's top."""
     from pydrake.math import RigidTransform, RotationMatrix
 
-    from drake_grasp import hand
+    from drake_grasp.robot import hand
 
     offset = np.zeros(3)
     offset["xy".index(axis)] = error
@@ -149,7 +149,7 @@ def precision_start_pose(spec, axis: str, error: float, clearance: float):
     offset by `error` along the object's x or y and `clearance` back along the palm normal."""
     from pydrake.math import RigidTransform
 
-    from drake_grasp import hand
+    from drake_grasp.robot import hand
     from drake_grasp.grasps import oracle_estimate, precision_grasp
 
     X_OP = precision_grasp(oracle_estimate(RigidTransform(), spec)).X_WP_target

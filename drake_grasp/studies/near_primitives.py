@@ -106,7 +106,7 @@ def exploration_fingerprint(task: Task, scenario=None) -> str:
     from drake_grasp.sweeps.fingerprint import digest, object_fingerprint, scenario_text
 
     scenario = scenario or _scenario(task.scenario_file, task.scenario_name)
-    return digest("near_primitives", drake_grasp.__version__, without_block(scenario_text(scenario), "scores"),
+    return digest("near_primitives", drake_grasp.BEHAVIOUR_VERSION, without_block(scenario_text(scenario), "scores"),
                   object_fingerprint(task.object))
 
 

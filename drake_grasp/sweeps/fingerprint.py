@@ -4,7 +4,7 @@ A results file keeps records across runs, so a rerun must never reuse a record c
 inputs. Each record therefore carries a fingerprint of its inputs beside its key (object, method,
 grasp, seed): the resolved scenario (after the scenario file's overrides), the perception
 configuration, the object's content, the planned grasp (for planner trials), an estimate error
-(where a trial adds one) and the package version (which stands for the code and the models it ships). The trial protocol's timings and thresholds
+(where a trial adds one) and the behaviour version (`drake_grasp.BEHAVIOUR_VERSION`, which stands for what the code and the models it ships do). The trial protocol's timings and thresholds
 are part of the scenario (`Scenario.protocol`), so they enter with it. Rows whose fingerprint differs
 from the current one are kept in the file but never used: each fingerprint has its own results, and
 changing a parameter back finds its old records again.
@@ -46,7 +46,7 @@ def _canonical(value):
 def object_content(name_or_path: str, **object_kwargs) -> dict:
     """What an object argument stands for, as plain data: the argument itself, plus the bytes of its
     file (as a hash) and the version of the import (repair, joining, decomposition) for a path, the parsed numbers for a primitive, or the catalogue name and the
-    package version for a catalogue object. The keyword arguments of the object's construction (a
+    behaviour version for a catalogue object. The keyword arguments of the object's construction (a
     mass, a scale) enter too.
 
     Raises:
@@ -59,7 +59,7 @@ def object_content(name_or_path: str, **object_kwargs) -> dict:
     content = {"argument": text, "kwargs": object_kwargs}
     kind = text.split(":", 1)[0].lower() if ":" in text else None
     if text in _PAPER_FACTORIES:
-        content["catalogue"] = {"name": text, "version": drake_grasp.__version__}
+        content["catalogue"] = {"name": text, "version": drake_grasp.BEHAVIOUR_VERSION}
     elif kind in _PRIMITIVE_PATTERNS:
         match = _PRIMITIVE_PATTERNS[kind].fullmatch(text.lower())
         if match is None:
@@ -107,7 +107,7 @@ def scenario_fingerprint(scenario_file: str = "", scenario_name: str = "default"
 
 def trial_fingerprint(spec, scenario_print: str | None = None, object_print: str | None = None) -> str:
     """The fingerprint of one trial (`trial.TrialSpec`): scenario and perception, object content,
-    the planned grasp (planner trials) and the package version; and, only where a spec has them (so
+    the planned grasp (planner trials) and the behaviour version; and, only where a spec has them (so
     that every other record keeps its fingerprint), an estimate error and the settings of a planner
     trial that plans itself. The method, grasp and seed are the record's key and not repeated here.
     Precomputed scenario and object fingerprints may be given."""
@@ -115,7 +115,7 @@ def trial_fingerprint(spec, scenario_print: str | None = None, object_print: str
         scenario_print = scenario_fingerprint(spec.scenario_file, spec.scenario_name)
     if object_print is None:
         object_print = object_fingerprint(spec.object, **spec.object_options())
-    parts = ["trial", drake_grasp.__version__, scenario_print, object_print, spec.planned]
+    parts = ["trial", drake_grasp.BEHAVIOUR_VERSION, scenario_print, object_print, spec.planned]
     if spec.has_estimate_error:
         parts.append({"estimate_error": spec.estimate_error})
     if spec.method == "eigengrasp" and spec.planned is None:
@@ -127,5 +127,5 @@ def trial_fingerprint(spec, scenario_print: str | None = None, object_print: str
 
 def sweep_fingerprint(name: str, *parts) -> str:
     """The fingerprint of a sweep with no scenario (Fig. 4): its name, its parameters that are not
-    part of a row's key, and the package version."""
-    return digest(name, drake_grasp.__version__, *parts)
+    part of a row's key, and the behaviour version."""
+    return digest(name, drake_grasp.BEHAVIOUR_VERSION, *parts)
