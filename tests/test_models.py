@@ -9,7 +9,7 @@ from pydrake.multibody.plant import AddMultibodyPlantSceneGraph
 from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder
 
-from drake_grasp.robot import modelgen
+from drake_grasp.robot import hand, modelgen
 from drake_grasp.paths import RegisterPackage
 
 
@@ -124,6 +124,33 @@ def test_wam_flange_matches_dh_table(q):
 def test_model_files_are_generated_from_the_facts():
     assert modelgen.HAND_SDF.read_text() == modelgen.hand_sdf(), "run: drake-grasp models"
     assert modelgen.WAM_SDF.read_text() == modelgen.wam_sdf(), "run: drake-grasp models"
+
+
+def test_the_bh8_280s_distal_link_shape_has_its_pad_taper_and_rounded_tip(tmp_path):
+    """The BH8-280's distal link as measured (hand.py's numbers; not used by the model yet, design.md
+    §4.1a): the tip frame lies on the flat pad, the back tapers, and the rounded tip reaches 8.5 mm
+    past A3, narrower than the link and below the pad, so its leading point is not a square edge.
+    Its mesh is a closed convex solid that Drake loads as a convex shape."""
+    import trimesh
+    from pydrake.geometry import Convex
+
+    path = tmp_path / "distal.obj"
+    path.write_text(modelgen.distal_obj())
+    mesh = trimesh.load(path, force="mesh")
+    assert mesh.is_watertight and mesh.is_convex and mesh.volume > 0
+    lo, hi = mesh.bounds
+    assert hi[0] == pytest.approx(hand.DISTAL_TIP_REACH, abs=1e-4)
+    assert hi[1] == pytest.approx(hand.D3, abs=1e-6)  # the pad, on which the tip frame lies
+    assert hi[2] - lo[2] == pytest.approx(hand.DISTAL_WIDTH, abs=1e-6)
+    v = mesh.vertices
+    root, end = v[v[:, 0] < 1e-6], v[np.abs(v[:, 0] - hand.A3) < 2e-3]
+    assert root[:, 1].min() == pytest.approx(hand.DISTAL_BACK_Y_ROOT, abs=1e-6)
+    assert end[:, 1].min() > hand.DISTAL_BACK_Y_ROOT + 0.003  # tapered: thinner at A3 than at the joint
+    tip = v[v[:, 0] > hand.DISTAL_TIP_REACH - 1e-4]
+    assert np.ptp(tip[:, 2]) < 0.5 * hand.DISTAL_WIDTH  # rounded across the width
+    assert tip[:, 1].max() < hand.D3 - 0.002  # and in the closing plane: the nose lies below the pad
+    assert hand.A3 < hand.distal_pad_end() < hand.DISTAL_TIP_REACH
+    assert Convex(str(path)).GetConvexHull().num_vertices() == len(mesh.vertices)
 
 
 def test_hand_joint_names_ranges_and_masses():

@@ -70,8 +70,23 @@ PROXIMAL_THICKNESS = 0.020  # thickness of the proximal link, in the closing pla
 # The open finger's inner face is flush with the palm (assumed; the real links are rounded about the
 # joint axis): the proximal box's inner face is PALM_HEIGHT - DW = 4.6 mm off the D-H line.
 PROXIMAL_BEHIND_AXIS = 0.005  # the proximal box starts this far behind the joint axis (assumed).
-# The distal pad surface holds the fingertip frame, D3 from the D-H line: thickness 2*D3.
+# The distal pad surface holds the fingertip frame, D3 from the D-H line: thickness 2*D3 at the joint.
 DISTAL_THICKNESS = 2.0 * D3
+
+# --- The distal link as the BH8-280 has it (docs/design.md §4.1a). --------------------------------
+# Not a box: a flat inner pad, a back that tapers toward the tip, and a tip rounded both in the
+# closing plane and across the finger's width. Numbers measured on Barrett's CAD model of the
+# BH8-280 distal link (jhu-lcsr/barrett_model, models/sw_meshes/bhand/bhand_finger_dist_link_fine.stl,
+# exported from Barrett's SolidWorks parts) by cutting it along the link; in the distal link's D-H
+# frame: x along the link from the distal joint, y toward the inner (grasping) side, z across.
+DISTAL_PAD_Y = D3  # the flat inner pad, on which the fingertip frame lies (measured 8-9.5 mm).
+DISTAL_BACK_Y_ROOT = -0.0094  # the back face at the distal joint (x = 0).
+DISTAL_BACK_Y_END = -0.0048  # the back face at x = A3: the link tapers from 18.9 to 14.3 mm.
+DISTAL_TIP_REACH = 0.0585  # the rounded tip's farthest point along the link (8.5 mm past A3).
+DISTAL_NOSE_RADIUS = 0.0115  # the tip's rounding in the closing plane, from the back up to the pad.
+DISTAL_NOSE_CENTRE_Y = 0.0060  # where that rounding is centred across the link (its farthest point's y).
+DISTAL_WIDTH = 0.023  # across the closing plane (measured 23.0 mm; the proximal link's is assumed).
+DISTAL_TIP_WIDTH_RADIUS = 0.022  # the tip's rounding across the width (seen from the pad).
 
 # --- Finger force (docs/design.md §4.1, assumed from the manual's force plot). --------------------
 FINGERTIP_STALL_FORCE = 15.0  # N, lower end of the 15-25 N range.
@@ -177,6 +192,50 @@ def distal_points_in_base(finger: int, spread: float, proximal: float, distal: f
         T = T @ _modified_dh_matrix(*row)
     P = np.asarray(points_D, float)
     return P @ T[:3, :3].T + T[:3, 3]
+
+
+def distal_pad_end() -> float:
+    """Where the flat pad ends and the rounded tip begins, along the distal link (m from its joint)."""
+    rise = DISTAL_PAD_Y - DISTAL_NOSE_CENTRE_Y
+    return DISTAL_TIP_REACH - DISTAL_NOSE_RADIUS + math.sqrt(DISTAL_NOSE_RADIUS**2 - rise**2)
+
+
+@functools.lru_cache(maxsize=1)
+def distal_link_points():
+    """Vertices of the distal link's shape, in its D-H frame (m): an (N, 3) array whose convex hull
+    is the link's collision and visual geometry (the model writes it as a mesh).
+
+    Sections across the link follow the measured outline in the closing plane: the flat pad at
+    ``DISTAL_PAD_Y``, the back tapering from ``DISTAL_BACK_Y_ROOT`` to ``DISTAL_BACK_Y_END`` at A3, and
+    the nose, a circle of radius ``DISTAL_NOSE_RADIUS`` reaching ``DISTAL_TIP_REACH``. Each outline
+    point is put at plus and minus the half-width at its x, which the tip's rounding across the width
+    (``DISTAL_TIP_WIDTH_RADIUS``) narrows near the end. The shape is convex, as the real link is
+    (apart from the pad's shallow recess).
+    """
+    import numpy as np
+
+    cx = DISTAL_TIP_REACH - DISTAL_NOSE_RADIUS
+    cy = DISTAL_NOSE_CENTRE_Y
+    slope = (DISTAL_BACK_Y_END - DISTAL_BACK_Y_ROOT) / A3
+    outline = [(0.0, DISTAL_PAD_Y), (0.0, DISTAL_BACK_Y_ROOT)]
+    # The nose: from where the circle meets the back line up to where it meets the pad.
+    top = math.asin((DISTAL_PAD_Y - cy) / DISTAL_NOSE_RADIUS)
+    angles = np.linspace(-math.pi / 2, top, 25)
+    for a in angles:
+        x, y = cx + DISTAL_NOSE_RADIUS * math.cos(a), cy + DISTAL_NOSE_RADIUS * math.sin(a)
+        if y >= DISTAL_BACK_Y_ROOT + slope * x:  # outside the back line: part of the nose
+            outline.append((x, y))
+    outline.append((outline[-1][0], DISTAL_PAD_Y))
+    for x in np.linspace(0.0, cx, 8):  # the back line, up to the nose
+        outline.append((float(x), DISTAL_BACK_Y_ROOT + slope * float(x)))
+    width_centre = DISTAL_TIP_REACH - DISTAL_TIP_WIDTH_RADIUS
+    points = []
+    for x, y in outline:
+        beyond = max(0.0, x - width_centre)
+        half = min(DISTAL_WIDTH / 2, math.sqrt(max(DISTAL_TIP_WIDTH_RADIUS**2 - beyond**2, 0.0)))
+        half = max(half, 0.002)  # the very end keeps a 4 mm wide edge (measured: a blunt dome)
+        points += [(x, y, -half), (x, y, half)]
+    return np.array(points)
 
 
 @functools.lru_cache(maxsize=32)
