@@ -269,6 +269,30 @@ def plan_compliant_grasp(grasp: GraspType | str, estimate: ObjectEstimate) -> Gr
     return COMPLIANT_GRASPS[grasp](estimate)
 
 
+# Each compliant grasp's near-symmetries: turns of the palm about its approach axis (rad) that give
+# nearly the same grasp. The box, cylindrical and precision grasps close two sides of the object
+# against each other, so a half-turn swaps F3 with F1 and F2; the spherical grasp's three fingers sit
+# 120° apart, so thirds of a turn move each finger onto the next's place. Not exact: F3 opposes F1 and
+# F2, which sit 25 mm off its closing plane (hand.AW), so an equivalent is a different grasp that is
+# tried only when the grasp's own pose cannot be reached (GraspExecutor).
+NEAR_SYMMETRIES = {GraspType.SPHERICAL: (2 * math.pi / 3, -2 * math.pi / 3), GraspType.CYLINDRICAL: (math.pi,),
+                   GraspType.BOX: (math.pi,), GraspType.PRECISION: (math.pi,)}
+
+
+def turned_about_approach(plan: GraspPlan, turn: float) -> GraspPlan:
+    """`plan` with the palm turned by `turn` rad about its approach axis (z_P) through the palm centre."""
+    X = plan.X_WP_target
+    return dataclasses.replace(plan, X_WP_target=RigidTransform(X.rotation() @ RotationMatrix.MakeZRotation(turn),
+                                                                  X.translation()))
+
+
+def near_symmetric_plans(plan: GraspPlan) -> list[tuple[float, GraspPlan]]:
+    """(turn, plan) for `plan` itself (turn 0) and then each of its grasp's near-symmetric
+    equivalents, the smallest turn first; a plan of no compliant grasp (a planner's) has none."""
+    turns = sorted(NEAR_SYMMETRIES.get(plan.grasp, ()), key=lambda a: (abs(a), a))
+    return [(0.0, plan)] + [(turn, turned_about_approach(plan, turn)) for turn in turns]
+
+
 def oracle_estimate(X_WO: RigidTransform, spec) -> ObjectEstimate:
     """The ground-truth estimate of an object (for oracle trials and tests): its axes and extents."""
     R_WO = X_WO.rotation().matrix()

@@ -169,3 +169,21 @@ def test_grasp_executor_runs_its_phases_on_time_without_contact(station):
     q_end = executor.GetOutputPort("wam.desired_state").Eval(context)[:7]
     lifted = ArmKinematics(plant, station.wam).palm_pose(q_end).translation()
     assert lifted[2] - plan.X_WP_target.translation()[2] == pytest.approx(times.lift_height, abs=0.005)
+
+
+def test_the_executor_runs_the_grasp_itself_when_reachable_and_names_every_turn_it_tried_when_not(station):
+    """Reachable: the grasp's own pose, turn 0. Out of the WAM's reach (2 m away): its near-symmetric
+    equivalents are tried too, and the error lists them (the spherical grasp's thirds)."""
+    from drake_grasp.control.arm_motion import ReachError
+    from pydrake.math import RigidTransform
+
+    plant, scenario = station.plant, station.scenario
+    q_start = np.asarray(scenario.protocol.start_configuration, float)
+    executor = GraspExecutor(plant, station.scene_graph, station.wam, plant.GetBodyIndices(station.hand), None,
+                             q_start, scenario.protocol.execution)
+    plan = plan_compliant_grasp("spherical", oracle_estimate(station.X_WO_nominal(), station.object_spec))
+    motion = executor.plan_reachable_motion(plan, q_start)
+    assert motion.turn == 0.0 and motion.plan == plan and motion.unreachable == ""
+    far = type(plan)(plan.grasp, plan.spread, RigidTransform(plan.X_WP_target.rotation(), [2.0, 0.0, 0.3]))
+    with pytest.raises(ReachError, match=r"nor the grasp turned -120°, \+120° about the approach"):
+        executor.plan_reachable_motion(far, q_start)

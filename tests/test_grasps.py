@@ -157,3 +157,31 @@ def test_trial_variation_is_seeded_and_bounded():
     assert max(abs(d.dx) for d in draws) <= 0.01 and max(abs(d.dy) for d in draws) <= 0.01
     assert max(abs(d.dyaw) for d in draws) <= math.radians(10)
     assert all(0.8 <= d.friction_scale <= 1.2 for d in draws)
+
+
+@pytest.mark.parametrize("grasp, turns", [("spherical", (2 * np.pi / 3, -2 * np.pi / 3)), ("box", (np.pi,)),
+                                          ("cylindrical", (np.pi,))])
+def test_each_compliant_grasp_knows_its_near_symmetric_equivalents(grasp, turns):
+    """The grasp itself first, then its turns about the approach (thirds for the spherical grasp's three
+    fingers, a half-turn for the two-sided grasps): the palm centre, the approach and the spread stay,
+    only the fingers' directions turn."""
+    from drake_grasp.grasps import near_symmetric_plans, plan_compliant_grasp
+
+    plan = plan_compliant_grasp(grasp, _estimate([0.55, 0.02, 0.05], [0.12, 0.06, 0.1], axis=[1, 0, 0]))
+    plans = near_symmetric_plans(plan)
+    assert plans[0] == (0.0, plan)
+    assert sorted(t for t, _ in plans[1:]) == pytest.approx(sorted(turns))
+    for turn, other in plans[1:]:
+        X, Y = plan.X_WP_target, other.X_WP_target
+        np.testing.assert_allclose(Y.translation(), X.translation(), atol=1e-12)
+        np.testing.assert_allclose(Y.rotation().col(2), X.rotation().col(2), atol=1e-12)
+        x_turned = np.cos(turn) * X.rotation().col(0) + np.sin(turn) * X.rotation().col(1)
+        np.testing.assert_allclose(Y.rotation().col(0), x_turned, atol=1e-12)
+        assert other.spread == plan.spread and other.grasp == plan.grasp
+
+
+def test_a_planners_grasp_has_no_near_symmetric_equivalent():
+    from drake_grasp.grasps import GraspPlan, near_symmetric_plans
+
+    plan = GraspPlan(None, 0.3, RigidTransform([0.5, 0.0, 0.3]))
+    assert near_symmetric_plans(plan) == [(0.0, plan)]

@@ -21,8 +21,8 @@ from pydrake.geometry import SceneGraph
 from pydrake.multibody.tree import ModelInstanceIndex
 from pydrake.systems.framework import BasicVector, Context, DiagramBuilder, LeafSystem, State
 
-from drake_grasp.control.arm_motion import ArmKinematics, JointPath
-from drake_grasp.grasps import GraspPlan
+from drake_grasp.control.arm_motion import ArmKinematics, JointPath, ReachError
+from drake_grasp.grasps import GraspPlan, near_symmetric_plans
 from drake_grasp.robot.hand import HandAction
 from drake_grasp.protocol import ExecutionTimes
 
@@ -55,6 +55,8 @@ class GraspMotion:
     approach_path: list
     move_time: float
     approach_duration: float
+    turn: float = 0.0  # the near-symmetric turn about the approach that `plan` is of the requested one, rad
+    unreachable: str = ""  # why the requested pose (and any smaller turn) could not be reached
 
     @property
     def has_preshape(self) -> bool:
@@ -108,7 +110,8 @@ class GraspExecutor(LeafSystem):
         hand.finger_preshape: proximal angles (3) for ``hand.finger_preshape``.
         phase: the current GraspPhase, as a number.
 
-    Raises (at construction): ReachError if the arm cannot reach the pre-grasp or approach poses.
+    Raises (at construction): ReachError if the arm cannot reach the whole path (pre-grasp, approach,
+    lift) of the plan nor of any of its near-symmetric equivalents (`plan_reachable_motion`).
     """
 
     def __init__(self, plant: MultibodyPlant, scene_graph: SceneGraph, wam: ModelInstanceIndex, hand_bodies: list,
@@ -148,15 +151,45 @@ class GraspExecutor(LeafSystem):
         self.DeclareVectorOutputPort("phase", 1, self._CalcPhase, {self.abstract_state_ticket(self._progress_index)})
 
     def plan_motion(self, plan: GraspPlan, q_start: np.ndarray) -> GraspMotion:
-        """The arm's motion for `plan` from joint angles q_start (raises ReachError if unreachable)."""
+        """The arm's motion for `plan` from joint angles q_start (raises ReachError if unreachable).
+
+        The whole path must be reachable: the pre-grasp pose, the straight approach to the target and
+        a lift straight up from the target by the protocol's lift height (the lift itself is planned
+        again from where the approach stops)."""
         q_pregrasp = self._kinematics.solve(plan.X_WP_pregrasp, q_start)
         approach_path = self._kinematics.straight_line(plan.X_WP_pregrasp, plan.X_WP_target, q_pregrasp, step=0.01)
+        X_up = RigidTransform(plan.X_WP_target.rotation(),
+                              plan.X_WP_target.translation() + [0.0, 0.0, self._times.lift_height])
+        self._kinematics.straight_line(plan.X_WP_target, X_up, approach_path[-1], step=0.02)
         move_time = max(1.0, float(np.max(np.abs(q_pregrasp - q_start))) / self._times.joint_speed)
         return GraspMotion(plan, q_pregrasp, approach_path, move_time, plan.approach_distance / self._times.approach_speed)
 
+    def plan_reachable_motion(self, plan: GraspPlan, q_start: np.ndarray) -> GraspMotion:
+        """The motion of `plan`, or, when the arm cannot reach its whole path, of the nearest of its
+        grasp's near-symmetric equivalents that it can reach (`grasps.near_symmetric_plans`: the
+        same grasp turned about the approach, the smallest turn first).
+
+        Raises:
+            ReachError: none is reachable; its message lists what was tried.
+        """
+        tried = []
+        for turn, candidate in near_symmetric_plans(plan):
+            try:
+                motion = self.plan_motion(candidate, q_start)
+            except ReachError as e:
+                tried.append((turn, str(e)))
+                continue
+            unreachable = tried[0][1] if tried else ""
+            return dataclasses.replace(motion, turn=turn, unreachable=unreachable)
+        if len(tried) == 1:
+            raise ReachError(tried[0][1])
+        turns = ", ".join(f"{np.degrees(turn):+.0f}°" for turn, _ in tried[1:])
+        raise ReachError(f"{tried[0][1]}, nor the grasp turned {turns} about the approach")
+
     def _start_grasp(self, progress: _Progress, plan: GraspPlan, q_start: np.ndarray, t: float) -> _Progress:
-        """Plans `plan`'s motion from q_start and enters GraspPhase.MOVE at time t (raises ReachError)."""
-        motion = self.plan_motion(plan, q_start)
+        """Plans the motion of `plan` (or of its nearest reachable near-symmetric equivalent) from
+        q_start and enters GraspPhase.MOVE at time t (raises ReachError)."""
+        motion = self.plan_reachable_motion(plan, q_start)
         path = JointPath()
         path.add(t, q_start)
         path.add(t + motion.move_time, motion.q_pregrasp)

@@ -246,6 +246,9 @@ class _Watch:
         record.contacts_after_close = " ".join(self.contacts_after_close)
         record.contacts_at_end = " ".join(contacts_end)
         record.approach_stopped_on_contact = bool(progress.stopped_on_contact)
+        if progress.motion is not None and progress.motion.turn:  # the grasp's own pose was out of reach
+            record.detail = (f"executed the grasp turned {np.degrees(progress.motion.turn):+.0f}° about the approach: "
+                             f"{progress.motion.unreachable}")
         station = self.station
         q_hand = station.hand_controller.joint_angles(plant.get_state_output_port(station.hand).Eval(plant_context))
         record.finger_angles = [float(q_hand[0])] + [float(a) for a in q_hand[2:8]]
