@@ -69,8 +69,9 @@ def test_the_source_distribution_carries_what_the_readme_links_to():
     """README's links are relative; it says the source distribution carries docs/ (MANIFEST.in), so that they
     resolve there too. The wheel carries none of it (docs/ is outside the packages)."""
     manifest = (REPO / "MANIFEST.in").read_text().split("\n")
-    assert "graft docs" in manifest and "include CHANGELOG.md" in manifest
+    assert "graft docs" in manifest and "include CHANGELOG.md LICENSE" in manifest
     readme = README.read_text(encoding="utf-8")
     targets = {relative_path(t) for t in links(readme)} - {None, ""}
-    outside = sorted(t for t in targets if t.split("#")[0] != "CHANGELOG.md" and not t.startswith("docs/"))
-    assert not outside, f"README links outside docs/ and CHANGELOG.md, which the sdist may not carry: {outside}"
+    outside = sorted(t for t in targets if t.split("#")[0] not in ("CHANGELOG.md", "LICENSE")
+                     and not t.startswith("docs/"))
+    assert not outside, f"README links outside docs/, CHANGELOG.md and LICENSE, which the sdist may not carry: {outside}"
