@@ -20,6 +20,11 @@ outward-wound shells. The steps, each counted for the one-line note a user sees:
 Why MeshFix: measured on the defect zoo (drake_grasp.objects.mesh_zoo, scripts/bench_repair.py),
 trimesh.repair.fill_holes closes only holes of one or two triangles, and Manifold refuses any mesh
 that is not already a manifold; MeshFix closed every open cap and hole. See docs/results/repair.md.
+
+MeshFix is an optional dependency: pymeshfix is GPL-3 (its PyPI classifier says AGPL-3), this
+package BSD-3-Clause, so it is the extra ``drake-grasp[repair]`` (scripts/setup installs it) and
+imported only when a mesh has an open patch. Without it, closed meshes load as before and a mesh
+that needs closing is refused with one line saying how to enable the repair.
 """
 
 from __future__ import annotations
@@ -58,6 +63,14 @@ def _unique_rows(rows: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 class RepairError(ValueError):
     """No solid can honestly be recovered from the mesh (one line)."""
+
+
+MESHFIX_MISSING = ("open mesh ({edges} open edges): closing it needs MeshFix, which is not installed; enable the "
+                   "repair with pip install 'drake-grasp[repair]' (pymeshfix, GPL-3), or close the mesh first")
+
+
+class _MeshFixMissing(RepairError):
+    """pymeshfix is not installed and a patch needs closing (the caller names the file)."""
 
 
 @dataclasses.dataclass
@@ -157,8 +170,11 @@ def _drop_duplicates(faces: np.ndarray, report: RepairReport) -> np.ndarray:
     return faces[keep]
 
 
-def _meshfix(patch: trimesh.Trimesh) -> trimesh.Trimesh | None:
-    import pymeshfix  # Imported here: only open meshes need it.
+def _meshfix(patch: trimesh.Trimesh, open_edges: int = 0) -> trimesh.Trimesh | None:
+    try:
+        import pymeshfix  # Imported here: only open meshes need it (an optional extra, GPL-3).
+    except ImportError:
+        raise _MeshFixMissing(MESHFIX_MISSING.format(edges=open_edges)) from None
 
     fixer = pymeshfix.MeshFix(np.asarray(patch.vertices, float), np.asarray(patch.faces, np.int32))
     fixer.repair(joincomp=False, remove_smallest_components=False)
@@ -272,18 +288,21 @@ def closed_shells(mesh: trimesh.Trimesh, label: str = "mesh") -> tuple[list[trim
     opened = [0.0, 0.0]
     parts = _file_parts(mesh)
     pooled = []
-    for indices in parts:
-        part = trimesh.Trimesh(mesh.vertices, mesh.faces[indices], process=False)
-        if len(parts) > 1:
-            welded = part.copy()
-            welded.merge_vertices(merge_tex=True, merge_norm=True)
-            if not welded.is_watertight:
-                pooled.append(indices)
-                continue
-        shells += _part_shells(part, report, opened)
-    if pooled:
-        part = trimesh.Trimesh(mesh.vertices, mesh.faces[np.concatenate(pooled)], process=False)
-        shells += _part_shells(part, report, opened)
+    try:
+        for indices in parts:
+            part = trimesh.Trimesh(mesh.vertices, mesh.faces[indices], process=False)
+            if len(parts) > 1:
+                welded = part.copy()
+                welded.merge_vertices(merge_tex=True, merge_norm=True)
+                if not welded.is_watertight:
+                    pooled.append(indices)
+                    continue
+            shells += _part_shells(part, report, opened)
+        if pooled:
+            part = trimesh.Trimesh(mesh.vertices, mesh.faces[np.concatenate(pooled)], process=False)
+            shells += _part_shells(part, report, opened)
+    except _MeshFixMissing as missing:
+        raise RepairError(f"{label}: {missing}") from None
     if report.closed_patches:
         report.volume_before, report.volume_after = opened
     if not shells:
@@ -316,7 +335,7 @@ def _part_shells(mesh: trimesh.Trimesh, report: RepairReport, opened: list) -> l
         patch = _outward(patch, report)
         if not patch.is_watertight:
             open_edges = len(trimesh.grouping.group_rows(patch.edges_sorted, require_count=1))
-            closed = _meshfix(patch) if len(patch.faces) >= 3 else None
+            closed = _meshfix(patch, open_edges) if len(patch.faces) >= 3 else None
             if closed is not None:
                 closed = _outward(closed, RepairReport())
                 closed.metadata["inward"] = patch.metadata.get("inward", False)
