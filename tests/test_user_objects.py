@@ -1,5 +1,6 @@
 """Honest physics and units for a user's mesh: the enclosed solid (drake_grasp.objects.solid),
-separate components, --scale, the units warning, simplification, and spheres that do not tip."""
+separate components, --scale, the size refusal and units warning, simplification, and spheres that do
+not tip."""
 
 import time
 import warnings
@@ -48,10 +49,11 @@ def test_separate_components_are_an_error_unless_the_largest_is_kept(tmp_path):
     assert joined.volume == pytest.approx(2 * 108e-6 + 8e-6, rel=1e-5)
 
 
-def test_a_box_in_millimetres_warns_and_scale_fixes_it(tmp_path):
+def test_a_box_in_millimetres_is_refused_and_scale_fixes_it(tmp_path):
     path = tmp_path / "box_mm.stl"
     trimesh.creation.box((100.0, 60.0, 40.0)).export(path)
-    with pytest.warns(objects.UnitsWarning, match=r"largest extent 100 m: is the file in millimetres\? use --scale 0.001"):
+    with pytest.raises(objects.ObjectError, match=r"largest extent 100 m: more than the 50 cm a grasp here can take "
+                                                  r".*is the file in millimetres \(--scale 0.001\)\?"):
         objects.object_from_mesh(path)
     with warnings.catch_warnings():
         warnings.simplefilter("error", objects.UnitsWarning)
@@ -89,7 +91,8 @@ def test_a_dense_mesh_is_simplified_with_a_note_and_keeps_its_mass(tmp_path):
 def test_cli_scale_is_for_mesh_files_only(tmp_path, capsys):
     assert cli.main(["trial", "--object", "cube:0.05", "--scale", "0.001", "--oracle"]) == 2
     assert capsys.readouterr().err.strip().splitlines() == [
-        "drake-grasp trial: error: cube:0.05: --scale applies to mesh files (OBJ, STL, PLY, glTF) only"]
+        "drake-grasp trial: error: cube:0.05: --scale applies to mesh files (OBJ, STL, PLY, glTF, MuJoCo .msh, Drake .vtk) "
+        "only"]
     path = tmp_path / "box.stl"
     trimesh.creation.box((0.1, 0.06, 0.04)).export(path)
     assert cli.main(["resemble", "--object", str(path), "--scale", "-1"]) == 2

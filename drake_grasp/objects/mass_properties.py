@@ -228,8 +228,8 @@ def _make_spec(
     volume, p_BO, unit_inertia = mass_properties
     pieces = tuple(_shift(piece, -np.asarray(p_BO)) for piece in pieces_B)
     mass = float(density * volume if mass is None else mass)
-    if not mass > 0.0:
-        raise ObjectError(f"{name}: mass must be positive, got {mass}")
+    if not (mass > 0.0 and math.isfinite(mass)):
+        raise ObjectError(f"{name}: mass must be a finite positive number (kg), got {mass}")
     inertia = mass * unit_inertia
     lo, hi = _aabb(pieces, np.eye(3))
     lo_T, _ = _aabb(pieces, RollPitchYaw(*rpy_TO).ToRotationMatrix().matrix())

@@ -1,11 +1,13 @@
 """Objects from mesh files: read, repaired into closed shells, joined into one object, in metres,
 split into convex pieces for contact and rested on a stable face.
 
-A mesh file (any format trimesh reads: OBJ, STL, PLY, OFF, glTF/GLB) is read as it stores its
-triangles (`--scale`, glTF turned z up), repaired (:mod:`drake_grasp.objects.repair`), its shells
-joined into one rigid object (:mod:`drake_grasp.objects.solid`), checked for its units, simplified if
-dense and decomposed into convex pieces (:mod:`drake_grasp.objects.pieces`); the repaired solid and
-the pieces are cached by the file's content. Mass properties come from the solid itself.
+A mesh file (any format trimesh reads: OBJ, STL, PLY, OFF, glTF/GLB; MuJoCo's binary ``.msh``;
+Drake's tetrahedral ``.vtk``, by its boundary surface) is read as it stores its triangles (`--scale`,
+glTF turned z up), repaired (:mod:`drake_grasp.objects.repair`), its shells joined into one rigid
+object (:mod:`drake_grasp.objects.solid`), checked for a size the hand can grasp
+(:mod:`drake_grasp.objects.sizes`), simplified if dense and decomposed into convex pieces
+(:mod:`drake_grasp.objects.pieces`); the repaired solid and the pieces are cached by the file's
+content. Mass properties come from the solid itself.
 """
 
 from __future__ import annotations
@@ -24,12 +26,12 @@ from pydrake.common.eigen_geometry import AngleAxis
 from pydrake.math import RollPitchYaw, RotationMatrix
 from scipy.spatial import ConvexHull, QhullError
 
-from drake_grasp.objects import repair
+from drake_grasp.objects import mujoco_msh, repair, sizes, vtk_mesh
 from drake_grasp.objects.pieces import IMPORT_VERSION, _decompose
 from drake_grasp.objects.spec import (
     COACD_THRESHOLD, CONVEXITY_TOLERANCE, DEFAULT_DENSITY, DEFAULT_MAX_PIECES, MAX_FACES, MeshNote,
-    ObjectError, ObjectSpec, PLAUSIBLE_EXTENTS, PRIMITIVE_NAMES, STABLE_POSE_TOLERANCE, ShapePiece,
-    UnitsWarning, UnstablePoseWarning, YELLOW_PAPER_RGBA, cache_dir,
+    ObjectError, ObjectSpec, PRIMITIVE_NAMES, STABLE_POSE_TOLERANCE, ShapePiece, UnstablePoseWarning,
+    YELLOW_PAPER_RGBA, cache_dir,
 )
 from drake_grasp.objects.mass_properties import _make_spec
 
@@ -51,27 +53,43 @@ def _model_name(text: str) -> str:
 _Y_UP_SUFFIXES = (".gltf", ".glb")
 
 
-def _read_mesh(path: Path, label: str, scale: float) -> trimesh.Trimesh:
-    """The triangles of a mesh file as it stores them (scaled to metres, z up; nothing welded or
-    repaired yet). ObjectError for a file that is missing, unreadable, has no triangles or has
-    vertices that are not finite."""
+def read_triangles(path: Path, label: str) -> trimesh.Trimesh:
+    """The triangles a mesh file stores, in its own units and frame: a MuJoCo ``.msh``
+    (:mod:`drake_grasp.objects.mujoco_msh`), the boundary of Drake's tetrahedral ``.vtk``
+    (:mod:`drake_grasp.objects.vtk_mesh`), or any format trimesh reads. ObjectError (one line) for a
+    file that is missing, unreadable or damaged, has no triangles or has vertices that are not finite."""
     if not path.exists():
         raise ObjectError(f"{label}: file not found")
     if not path.is_file():
         raise ObjectError(f"{label}: not a file")
-    try:
-        mesh = trimesh.load(path, force="mesh", process=False)
-    except Exception as error:  # trimesh raises many types for unreadable files.
-        reason = _one_line(error) or type(error).__name__
-        raise ObjectError(f"{label}: cannot read mesh ({reason})") from None
-    if not isinstance(mesh, trimesh.Trimesh) or len(mesh.faces) == 0:
-        raise ObjectError(f"{label}: file contains no triangles (a point cloud or an empty mesh): no solid "
-                          "can be recovered")
-    bad = int(np.count_nonzero(~np.isfinite(mesh.vertices).all(axis=1)))
+    suffix = path.suffix.lower()
+    if suffix == ".msh":
+        vertices, faces = mujoco_msh.read_msh(path.read_bytes(), label)
+    elif suffix == ".vtk":
+        vertices, faces = vtk_mesh.boundary_surface(*vtk_mesh.read_vtk(path.read_bytes(), label))
+    else:
+        try:
+            mesh = trimesh.load(path, force="mesh", process=False)
+        except Exception as error:  # trimesh raises many types for unreadable files.
+            reason = _one_line(error) or type(error).__name__
+            raise ObjectError(f"{label}: cannot read mesh ({reason})") from None
+        if not isinstance(mesh, trimesh.Trimesh) or len(mesh.faces) == 0:
+            raise ObjectError(f"{label}: file contains no triangles (a point cloud or an empty mesh): no solid "
+                              "can be recovered")
+        vertices, faces = mesh.vertices, mesh.faces
+    vertices = np.asarray(vertices, float)
+    bad = int(np.count_nonzero(~np.isfinite(vertices).all(axis=1)))
     if bad:
         noun = "vertex is" if bad == 1 else "vertices are"
         raise ObjectError(f"{label}: {bad} {noun} not finite (NaN or inf)")
-    mesh = trimesh.Trimesh(np.asarray(mesh.vertices, float) * scale, np.asarray(mesh.faces, np.int64), process=False)
+    return trimesh.Trimesh(vertices, np.asarray(faces, np.int64), process=False)
+
+
+def _read_mesh(path: Path, label: str, scale: float) -> trimesh.Trimesh:
+    """The triangles of a mesh file as it stores them (:func:`read_triangles`), scaled to metres
+    and turned z up (nothing welded or repaired yet). ObjectError for a flat mesh too."""
+    mesh = read_triangles(path, label)
+    mesh = trimesh.Trimesh(np.asarray(mesh.vertices) * scale, mesh.faces, process=False)
     if path.suffix.lower() in _Y_UP_SUFFIXES:
         mesh.apply_transform(trimesh.transformations.rotation_matrix(math.pi / 2, [1.0, 0.0, 0.0]))
     extents = mesh.extents
@@ -200,30 +218,6 @@ def _user_solid(shells: list[trimesh.Trimesh], label: str, keep_largest: bool,
     return solid.mesh
 
 
-def _likely_scale(extent: float) -> tuple[str, float] | None:
-    """(unit, scale) that brings a largest extent `extent` (file units) into PLAUSIBLE_EXTENTS."""
-    for unit, factor in (("millimetres", 0.001), ("centimetres", 0.01), ("inches", 0.0254)):
-        if PLAUSIBLE_EXTENTS[0] <= extent * factor <= PLAUSIBLE_EXTENTS[1]:
-            return unit, factor
-    return None
-
-
-def _warn_units(mesh: trimesh.Trimesh, label: str, scale: float) -> None:
-    """One UnitsWarning when the object's largest extent (m) is implausible for the hand."""
-    extent = float(np.max(mesh.extents))
-    if PLAUSIBLE_EXTENTS[0] <= extent <= PLAUSIBLE_EXTENTS[1]:
-        return
-    if extent > PLAUSIBLE_EXTENTS[1]:
-        guess = _likely_scale(extent / scale)
-        hint = (f"is the file in {guess[0]}? use --scale {guess[1]:g}" if guess
-                else "is the file in metres? set --scale")
-        message = f"{label}: largest extent {extent:.3g} m: {hint}"
-    else:
-        message = (f"{label}: largest extent {extent * 1000:.3g} mm, smaller than the hand can grasp: "
-                   "is the file in metres? set --scale")
-    warnings.warn(message, UnitsWarning, stacklevel=3)
-
-
 def _simplified(mesh: trimesh.Trimesh, label: str) -> trimesh.Trimesh:
     """The mesh, or, above MAX_FACES faces, its quadric-decimation simplification (trimesh over the
     fast-simplification library) to MAX_FACES faces, when that stays a closed solid."""
@@ -251,12 +245,14 @@ def object_from_mesh(
     largest_component: bool = False,
     join_gap: float | None = None,
 ) -> ObjectSpec:
-    """An object from a closed triangle mesh in any format trimesh reads (OBJ, STL, PLY, ...).
+    """An object from a closed triangle mesh in any format trimesh reads (OBJ, STL, PLY, ...), a
+    MuJoCo ``.msh`` or the boundary of Drake's tetrahedral ``.vtk``.
 
     The object is the solid the mesh encloses (:mod:`drake_grasp.objects.solid`): closed shells
     that overlap are united (mass and inertia never count an overlap twice); shells that do not
-    touch are an ObjectError naming their count, unless `largest_component` keeps the largest. A
-    largest extent outside PLAUSIBLE_EXTENTS gets a one-line UnitsWarning naming the likely unit. A
+    touch are an ObjectError naming their count, unless `largest_component` keeps the largest. An
+    object no hand can grasp (:mod:`drake_grasp.objects.sizes`: largest extent outside 3 mm-0.5 m)
+    is an ObjectError naming its size and the likely unit; one below 1 cm gets a UnitsWarning. A
     mesh of more than MAX_FACES faces is simplified for contact and rendering (quadric decimation,
     trimesh with fast-simplification), saying so with a MeshNote; mass properties come from the
     full mesh.
@@ -339,9 +335,11 @@ def object_from_triangles(
     if len(mesh.faces) > MAX_FACES:  # Said first: what follows takes a while on such a mesh.
         warnings.warn(f"{label}: {len(mesh.faces):,} faces; simplifying to {MAX_FACES:,} for contact and rendering",
                       MeshNote, stacklevel=2)
+    if not largest_component:  # Refused before the repair (kept parts may still make it graspable).
+        sizes.check_size(mesh.vertices[np.unique(mesh.faces)], label, scale, warn=False)
     solid_key = hashlib.sha256(f"{digest}|{scale!r}|{join_gap!r}|{largest_component}".encode()).hexdigest()[:24]
     mesh = _cached_solid(mesh, label, solid_key, join_gap, largest_component)
-    _warn_units(mesh, label, scale)
+    sizes.check_size(mesh.vertices, label, scale)
     settings = (f"{scale!r}|{max_pieces}|{COACD_THRESHOLD!r}|{CONVEXITY_TOLERANCE!r}|{largest_component}|{MAX_FACES}"
                 f"|{join_gap!r}")
     key = hashlib.sha256((digest + settings).encode()).hexdigest()[:20]

@@ -1,16 +1,8 @@
 """Objects from model files: SDFormat and URDF (parsed by Drake) and MuJoCo MJCF object files (read
 here), with the file's inertia checked before it can reach the plant.
 
-Why: a model file carries an inertial, and inertials in the wild are often placeholders (izz = 0,
-1 kg·m² on a 0.1 kg object) that make the mass matrix singular or the object spin like a flywheel.
-Every inertial read from a file is checked (:func:`inertia_problem`): finite and positive-definite,
-the principal moments satisfy the triangle inequality, the moments fit inside the collision
-geometry (no principal moment above mass × the largest distance of the geometry from the centre of
-mass, squared), and the mass implies a plausible density for the collision geometry's volume (20 to
-20,000 kg/m³: from expanded foam to tungsten). An implausible inertial is replaced by the one the
-collision geometry gives at uniform density (keeping a plausible mass), with a one-line
-`InertiaWarning` that names the bad value; ``inertia="file"`` keeps the file's, and refuses one
-that cannot be simulated. Nothing read from a file reaches the plant unchecked.
+Every inertial read from a file is checked (:mod:`drake_grasp.objects.inertia_checks`), and an
+implausible one replaced by the collision geometry's, before it can reach the plant.
 
 MJCF: Drake's MJCF parser reads only OBJ meshes, and MuJoCo-based benchmarks ship objects as one
 body with STL mesh geoms, so MJCF object files are read here: the geoms of the body tree under
@@ -37,7 +29,10 @@ from pydrake.geometry import Box, Capsule, Convex, Cylinder, Ellipsoid, Mesh, Sh
 from pydrake.math import RigidTransform, RollPitchYaw, RotationMatrix
 from pydrake.multibody.parsing import Parser
 
-from drake_grasp.objects.mesh_files import _load_checked_mesh, _model_name, _one_line, object_from_triangles
+from drake_grasp.objects.mesh_files import (
+    _load_checked_mesh, _model_name, _one_line, object_from_triangles, read_triangles,
+)
+from drake_grasp.objects import packages, sizes
 from drake_grasp.objects.pieces import IMPORT_VERSION, _decompose
 from drake_grasp.objects.spec import (
     DEFAULT_DENSITY, DEFAULT_MAX_PIECES, InertiaWarning, ObjectError, ObjectSpec, ShapePiece, YELLOW_PAPER_RGBA,
@@ -46,90 +41,12 @@ from drake_grasp.objects.spec import (
 from drake_grasp.objects.mass_properties import (
     _make_spec, _mass_properties_sampled, _mass_properties_summed, _piece_points,
 )
-
-PLAUSIBLE_DENSITY = (20.0, 20_000.0)  # kg/m³: expanded foam to tungsten
-INERTIA_CHOICES = ("check", "file", "geometry")
-
-
-# --- Inertia checks (pure) --------------------------------------------------------------------------
+from drake_grasp.objects.inertia_checks import (  # noqa: F401  (re-exported: model files' inertia checks)
+    INERTIA_CHOICES, PLAUSIBLE_DENSITY, _check_choice, checked_mass_properties, inertia_problem, simulable_problem,
+)
 
 
-def inertia_problem(mass: float, inertia: np.ndarray, volume: float | None = None,
-                    radius: float | None = None) -> str | None:
-    """Why an inertial cannot be simulated or is implausible for its geometry, or None.
 
-    Args:
-        mass: kg.
-        inertia: 3×3 rotational inertia about the centre of mass, kg·m².
-        volume: the collision geometry's volume (m³), for the density check; None skips it.
-        radius: the largest distance (m) of the collision geometry from the centre of mass; None
-            skips the size check.
-    """
-    inertia = np.asarray(inertia, float)
-    if not (math.isfinite(mass) and mass > 0.0):
-        return f"mass {mass:g} kg is not positive"
-    if not np.all(np.isfinite(inertia)):
-        return "the inertia has a non-finite entry"
-    if not np.allclose(inertia, inertia.T, rtol=1e-9, atol=1e-15):
-        return "the inertia is not symmetric"
-    moments = np.linalg.eigvalsh(inertia)
-    if moments[0] <= 1e-12 * max(moments[-1], 1e-300) or moments[0] <= 0.0:
-        return f"the inertia is not positive-definite (principal moments {_moments(moments)} kg·m²)"
-    if moments[2] > (moments[0] + moments[1]) * (1.0 + 1e-6):
-        return f"the principal moments {_moments(moments)} kg·m² break the triangle inequality"
-    if volume is not None and volume > 0.0:
-        density = mass / volume
-        if not PLAUSIBLE_DENSITY[0] <= density <= PLAUSIBLE_DENSITY[1]:
-            return (f"mass {mass:g} kg in {volume * 1e6:.4g} cm³ of collision geometry is a density of "
-                    f"{density:.4g} kg/m³ (plausible: {PLAUSIBLE_DENSITY[0]:g} to {PLAUSIBLE_DENSITY[1]:g})")
-    if radius is not None and radius > 0.0 and moments[2] > 1.01 * mass * radius**2:
-        return (f"principal moment {moments[2]:.3g} kg·m² exceeds what {mass:g} kg within {radius * 100:.3g} cm "
-                f"of its centre of mass can have ({mass * radius**2:.3g} kg·m²)")
-    return None
-
-
-def simulable_problem(mass: float, inertia: np.ndarray) -> str | None:
-    """Why an inertial cannot be simulated at all (not finite, not positive-definite, the triangle
-    inequality broken), or None: what ``inertia="file"`` still refuses."""
-    return inertia_problem(mass, inertia)
-
-
-def _moments(moments: np.ndarray) -> str:
-    return ", ".join(f"{m:.3g}" for m in moments)
-
-
-def checked_mass_properties(label: str, file_mass: float, file_com: np.ndarray, file_inertia: np.ndarray,
-                            geometry: tuple[float, np.ndarray, np.ndarray], radius_about, choice: str,
-                            density: float = DEFAULT_DENSITY) -> tuple[float, np.ndarray, np.ndarray]:
-    """(mass, centre of mass, unit inertia about it) for an object whose file gives `file_mass`
-    (kg), `file_com` and `file_inertia` (kg·m² about file_com) and whose collision geometry gives
-    `geometry` = (volume, centroid, unit inertia about it). `radius_about(point)` is the geometry's
-    largest distance from a point. `choice`: "check" (the file's if plausible, else the geometry's
-    with an InertiaWarning), "file" (the file's; ObjectError if it cannot be simulated), "geometry".
-    """
-    volume, centroid, unit_inertia = geometry
-    if choice == "file":
-        problem = simulable_problem(file_mass, file_inertia)
-        if problem:
-            raise ObjectError(f"{label}: the file's inertia cannot be simulated: {problem}")
-        return file_mass, np.asarray(file_com, float), np.asarray(file_inertia, float) / file_mass
-    if choice == "check":
-        problem = inertia_problem(file_mass, file_inertia, volume, radius_about(np.asarray(file_com, float)))
-        if problem is None:
-            return file_mass, np.asarray(file_com, float), np.asarray(file_inertia, float) / file_mass
-        mass = file_mass
-        if not (math.isfinite(mass) and PLAUSIBLE_DENSITY[0] <= mass / volume <= PLAUSIBLE_DENSITY[1]):
-            mass = density * volume
-        warnings.warn(f"{label}: implausible inertia in the file ({problem}); using the collision geometry's "
-                      f"at uniform density ({mass:.4g} kg; --inertia file keeps the file's)", InertiaWarning,
-                      stacklevel=3)
-        return mass, centroid, unit_inertia
-    return (file_mass if math.isfinite(file_mass) and file_mass > 0 else density * volume), centroid, unit_inertia
-
-
-def _check_choice(label: str, choice: str) -> None:
-    if choice not in INERTIA_CHOICES:
-        raise ObjectError(f"{label}: inertia must be one of {', '.join(INERTIA_CHOICES)}, got {choice!r}")
 def _piece_from_drake_shape(
     shape: Shape, X_BG: RigidTransform, label: str, max_pieces: int
 ) -> list[ShapePiece]:
@@ -161,6 +78,46 @@ def _piece_from_drake_shape(
     raise ObjectError(f"{label}: collision shape {type(shape).__name__} is not supported")
 
 
+def _one_mesh_mass_properties(geometries, label: str) -> tuple[float, np.ndarray, np.ndarray] | None:
+    """(volume m³, centroid in B, unit inertia m² about it in B) of a body whose collision geometry
+    is one mesh, exact from its solid (cached; sampling its convex pieces takes seconds); else None."""
+    if len(geometries) != 1 or not isinstance(geometries[0][0], Mesh):
+        return None
+    shape, X_BG = geometries[0]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # its notes were given when its pieces were made
+        solid = _load_checked_mesh(Path(shape.source().path()), label, float(shape.scale3()[0]))
+    R_BG = X_BG.rotation().matrix()
+    unit_inertia = np.asarray(solid.moment_inertia, float) / float(solid.mass)
+    return float(solid.volume), R_BG @ np.asarray(solid.center_mass) + X_BG.translation(), R_BG @ unit_inertia @ R_BG.T
+
+
+def non_finite_number(path: Path) -> str | None:
+    """Where an SDFormat or URDF file gives a number that is NaN or inf (a size, a mass, a pose),
+    named by its element's path, e.g. "link 'l' inertial mass 'nan'"; None if every number is finite
+    or the file is not XML (the parser says why). Drake would stop at a NaN size with a generic parse
+    error, and replace a NaN mass by a default one with a warning."""
+    try:
+        root = ElementTree.parse(path).getroot()
+    except (ElementTree.ParseError, OSError):
+        return None
+    parents = {child: parent for parent in root.iter() for child in parent}
+    for element in root.iter():
+        texts = [(element.tag, element.text)] + [(f"{element.tag} {k}", v) for k, v in element.attrib.items()]
+        for what, text in texts:
+            try:
+                values = [float(token) for token in (text or "").split()]
+            except ValueError:
+                continue
+            if values and not all(math.isfinite(v) for v in values):
+                where, node = [], parents.get(element)
+                while node is not None and node is not root:
+                    where.insert(0, f"{node.tag} {node.get('name')!r}" if node.get("name") else node.tag)
+                    node = parents.get(node)
+                return " ".join(where + [what, repr(text.strip())])
+    return None
+
+
 def object_from_sdf(
     path: str | os.PathLike,
     mass: float | None = None,
@@ -172,6 +129,7 @@ def object_from_sdf(
     rgba=YELLOW_PAPER_RGBA,
     friction: float | None = None,
     inertia: str = "check",
+    package_path=(),
 ) -> ObjectSpec:
     """An object from an SDFormat (or URDF) file with one model of one free body.
 
@@ -182,8 +140,11 @@ def object_from_sdf(
 
     Limits: one model with one body and no joints (not welded, not articulated); the file's
     visuals, friction and contact properties are replaced by ours (pieces drawn in `rgba`, the
-    scene's ContactParameters); ``package://`` URIs need the package to be findable by Drake's
-    default PackageMap; half spaces, height maps and other non-solid shapes are rejected.
+    scene's ContactParameters; a compliant hydroelastic ``.vtk`` mesh is read as its boundary
+    surface); ``package://`` URIs resolve against the package.xml files in the file's folder and
+    above it and under `package_path` (:mod:`drake_grasp.objects.packages`), else Drake's default
+    PackageMap; half spaces, height maps and other non-solid shapes are rejected. An object no hand
+    can grasp is refused (:mod:`drake_grasp.objects.sizes`).
 
     Args:
         path: The model file (.sdf or .urdf).
@@ -197,6 +158,7 @@ def object_from_sdf(
         inertia: "check" (the file's inertial if plausible, else the collision geometry's, with an
             InertiaWarning), "file" (the file's; ObjectError if it cannot be simulated) or
             "geometry" (the collision geometry's at uniform density, with the file's mass).
+        package_path: Folders holding a package.xml, or with package.xml files below them.
 
     Raises:
         ObjectError: One line naming the file and the problem.
@@ -209,12 +171,22 @@ def object_from_sdf(
     _check_choice(label, inertia)
     if not path.is_file():
         raise ObjectError(f"{label}: file not found")
+    where = non_finite_number(path)
+    if where:
+        raise ObjectError(f"{label}: {where} is not finite (NaN or inf)")
     builder = DiagramBuilder()
     plant, scene_graph = AddMultibodyPlantSceneGraph(builder, 0.0)
+    parser = Parser(plant)
+    local = packages.register_packages(parser.package_map(), path, package_path)
+    problem = packages.missing_package_problem(path.read_text(errors="replace"), parser.package_map(), local, path)
+    if problem:
+        raise ObjectError(f"{label}: {problem}")
     try:
-        models = Parser(plant).AddModels(str(path.resolve()))
+        with packages.quiet_downloads():
+            models = parser.AddModels(str(path.resolve()))
     except Exception as error:  # Drake raises RuntimeError with multi-line messages.
-        raise ObjectError(f"{label}: cannot parse ({_one_line(error)})") from None
+        problem = packages.download_problem(str(error), local) or f"cannot parse ({_one_line(error)})"
+        raise ObjectError(f"{label}: {problem}") from None
     if len(models) != 1:
         raise ObjectError(f"{label}: expected one model, found {len(models)}")
     (model,) = models
@@ -225,12 +197,15 @@ def object_from_sdf(
         raise ObjectError(f"{label}: the body must be free (the model has joints or is static)")
     (body,) = bodies
     inspector = scene_graph.model_inspector()
+    geometries = [(inspector.GetShape(g), inspector.GetPoseInFrame(g))
+                  for g in plant.GetCollisionGeometriesForBody(body)]
     pieces_B = []
-    for geometry_id in plant.GetCollisionGeometriesForBody(body):
-        shape, X_BG = inspector.GetShape(geometry_id), inspector.GetPoseInFrame(geometry_id)
+    for shape, X_BG in geometries:
         pieces_B += _piece_from_drake_shape(shape, X_BG, label, max_pieces)
     if not pieces_B:
         raise ObjectError(f"{label}: the body has no collision geometry")
+    points = np.vstack([_piece_points(piece) for piece in pieces_B])
+    sizes.check_size(points, label)
     file_mass = body.default_mass()
     mass_properties = None
     if file_mass > 0.0 and math.isfinite(file_mass):
@@ -239,8 +214,8 @@ def object_from_sdf(
         shift = np.dot(p_BScm, p_BScm) * np.eye(3) - np.outer(p_BScm, p_BScm)
         file_inertia = file_mass * (unit_inertia_Bo - shift)  # About the centre of mass.
         pieces = tuple(pieces_B)
-        geometry = _mass_properties_summed(pieces) if len(pieces) == 1 else _mass_properties_sampled(pieces)
-        points = np.vstack([_piece_points(piece) for piece in pieces])
+        geometry = (_one_mesh_mass_properties(geometries, label) or
+                    (_mass_properties_summed(pieces) if len(pieces) == 1 else _mass_properties_sampled(pieces)))
         checked_mass, p_BScm, unit_inertia = checked_mass_properties(
             label, file_mass, p_BScm, file_inertia, geometry,
             lambda p: float(np.max(np.linalg.norm(points - p, axis=1))), inertia, density)
@@ -266,33 +241,42 @@ def object_from_sdf(
 _MJCF_DEFAULT_DENSITY = 1000.0  # kg/m³: MuJoCo's default geom density
 
 
-def _floats(text: str | None, count: int | None = None, label: str = "") -> np.ndarray | None:
+def _floats(text: str | None, count: int | None = None, label: str = "", what: str = "number list"
+            ) -> np.ndarray | None:
+    """The numbers of an attribute (None if absent); ObjectError naming `what` if they are not
+    numbers, not `count` of them, or not finite (a NaN size must not pass for a flat sheet)."""
     if text is None:
         return None
     try:
         values = np.array([float(v) for v in text.split()], float)
     except ValueError:
-        raise ObjectError(f"{label}: bad number list {text!r}") from None
+        raise ObjectError(f"{label}: bad {what} {text!r}") from None
     if count is not None and len(values) != count:
-        raise ObjectError(f"{label}: expected {count} numbers, got {text!r}")
+        raise ObjectError(f"{label}: {what}: expected {count} numbers, got {text!r}")
+    if not np.all(np.isfinite(values)):
+        raise ObjectError(f"{label}: {what} {text!r} is not finite (NaN or inf)")
     return values
+
+
+def _geom_name(geom: dict) -> str:
+    return f"geom {geom['name']!r}" if geom.get("name") else f"{geom.get('type', 'sphere')} geom"
 
 
 def _mjcf_rotation(element, degrees: bool, label: str) -> np.ndarray:
     """The rotation an MJCF element's quat, axisangle, euler (xyz) or zaxis gives (3×3)."""
     if element.get("quat") is not None:
-        w, x, y, z = _floats(element.get("quat"), 4, label)
+        w, x, y, z = _floats(element.get("quat"), 4, label, f"{element.tag} quat")
         return RotationMatrix(_quaternion(w, x, y, z)).matrix()
     if element.get("axisangle") is not None:
-        ax, ay, az, angle = _floats(element.get("axisangle"), 4, label)
+        ax, ay, az, angle = _floats(element.get("axisangle"), 4, label, f"{element.tag} axisangle")
         angle = math.radians(angle) if degrees else angle
         return trimesh.transformations.rotation_matrix(angle, [ax, ay, az])[:3, :3]
     if element.get("euler") is not None:
-        angles = _floats(element.get("euler"), 3, label)
+        angles = _floats(element.get("euler"), 3, label, f"{element.tag} euler")
         angles = np.radians(angles) if degrees else angles
         return trimesh.transformations.euler_matrix(*angles, axes="rxyz")[:3, :3]
     if element.get("zaxis") is not None:
-        z = _floats(element.get("zaxis"), 3, label)
+        z = _floats(element.get("zaxis"), 3, label, f"{element.tag} zaxis")
         return trimesh.geometry.align_vectors([0, 0, 1], z / np.linalg.norm(z))[:3, :3]
     return np.eye(3)
 
@@ -325,7 +309,7 @@ def _mjcf_defaults(root) -> dict:
 def _geom_mesh(geom: dict, meshes: dict, label: str) -> trimesh.Trimesh:
     """One MJCF geom as a closed triangle mesh in its own frame (m)."""
     kind = geom.get("type", "sphere")
-    size = _floats(geom.get("size", "0 0 0"), None, label)
+    size = _floats(geom.get("size", "0 0 0"), None, label, f"{_geom_name(geom)} size")
     if kind == "mesh":
         name = geom.get("mesh")
         if name not in meshes:
@@ -371,15 +355,8 @@ def _read_mjcf(path: Path, label: str) -> tuple[trimesh.Trimesh, float, tuple | 
             name = mesh.get("name", Path(file).stem)
             if not mesh_path.is_file():
                 raise ObjectError(f"{label}: mesh {name!r}: {mesh_path} not found")
-            try:
-                loaded = trimesh.load(mesh_path, force="mesh", process=False)
-            except Exception as error:
-                raise ObjectError(f"{label}: mesh {name!r}: cannot read {mesh_path.name} ({_one_line(error)})") from None
-            if not isinstance(loaded, trimesh.Trimesh) or len(loaded.faces) == 0:
-                raise ObjectError(f"{label}: mesh {name!r}: {mesh_path.name} contains no triangles")
-            loaded = trimesh.Trimesh(np.asarray(loaded.vertices, float), np.asarray(loaded.faces, np.int64),
-                                     process=False)
-            scale = _floats(mesh.get("scale"), 3, label)
+            loaded = read_triangles(mesh_path, f"{label}: mesh {name!r}: {mesh_path.name}")
+            scale = _floats(mesh.get("scale"), 3, label, f"mesh {name!r} scale")
             if scale is not None:
                 loaded.apply_transform(np.diag([*scale, 1.0]))
             meshes[name] = loaded
@@ -400,14 +377,16 @@ def _read_mjcf(path: Path, label: str) -> tuple[trimesh.Trimesh, float, tuple | 
                 raise ObjectError(f"{label}: the object is articulated (a {joint.get('type', 'hinge')} joint); "
                                   "one rigid body is expected")
         for element in body.findall("inertial"):
-            mass = float(element.get("mass", "nan"))
+            given = _floats(element.get("mass"), 1, label, "inertial mass")
+            mass = math.nan if given is None else float(given[0])
             R = _mjcf_rotation(element, degrees, label)
             if element.get("fullinertia") is not None:
-                xx, yy, zz, xy, xz, yz = _floats(element.get("fullinertia"), 6, label)
+                xx, yy, zz, xy, xz, yz = _floats(element.get("fullinertia"), 6, label, "inertial fullinertia")
                 inertia = np.array([[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]])
             else:
-                inertia = np.diag(_floats(element.get("diaginertia", "nan nan nan"), 3, label))
-            pos = _floats(element.get("pos", "0 0 0"), 3, label)
+                diagonal = _floats(element.get("diaginertia"), 3, label, "inertial diaginertia")
+                inertia = np.diag(np.full(3, math.nan) if diagonal is None else diagonal)
+            pos = _floats(element.get("pos", "0 0 0"), 3, label, "inertial pos")
             R_R = X_RB[:3, :3] @ R
             if inertial is not None:
                 raise ObjectError(f"{label}: several bodies carry an <inertial>; one rigid body is expected")
@@ -422,13 +401,13 @@ def _read_mjcf(path: Path, label: str) -> tuple[trimesh.Trimesh, float, tuple | 
             mesh = _geom_mesh(geom, meshes, label)
             X_BG = np.eye(4)
             X_BG[:3, :3] = _mjcf_rotation(element, degrees, label)
-            X_BG[:3, 3] = _floats(geom.get("pos", "0 0 0"), 3, label)
+            X_BG[:3, 3] = _floats(geom.get("pos", "0 0 0"), 3, label, f"{_geom_name(geom)} pos")
             mesh.apply_transform(X_RB @ X_BG)
             pieces.append((collides, mesh, geom))
         for child in body.findall("body"):
             X_BC = np.eye(4)
             X_BC[:3, :3] = _mjcf_rotation(child, degrees, label)
-            X_BC[:3, 3] = _floats(child.get("pos", "0 0 0"), 3, label)
+            X_BC[:3, 3] = _floats(child.get("pos", "0 0 0"), 3, label, "body pos")
             walk(child, X_RB @ X_BC, child.get("childclass", default_class))
 
     walk(bodies[0], np.eye(4), bodies[0].get("childclass", "main"))
@@ -437,10 +416,11 @@ def _read_mjcf(path: Path, label: str) -> tuple[trimesh.Trimesh, float, tuple | 
         raise ObjectError(f"{label}: the body has no geoms")
     for _, mesh, geom in chosen:
         if geom.get("mass") is not None:
-            mass_from_geoms += float(geom["mass"])
+            mass_from_geoms += float(_floats(geom["mass"], 1, label, f"{_geom_name(geom)} mass")[0])
         else:
             volume = abs(float(mesh.volume)) if mesh.is_watertight else float(mesh.convex_hull.volume)
-            mass_from_geoms += float(geom.get("density", _MJCF_DEFAULT_DENSITY)) * volume
+            density = _floats(geom.get("density"), 1, label, f"{_geom_name(geom)} density")
+            mass_from_geoms += float(_MJCF_DEFAULT_DENSITY if density is None else density[0]) * volume
     collision = trimesh.util.concatenate([mesh for _, mesh, _ in chosen])
     return collision, mass_from_geoms, inertial, digest.hexdigest()
 

@@ -1,5 +1,6 @@
 """The objects a command line names: a catalogue name, a primitive string or a file, with the
-options only object files take (`--scale`, `--largest-component`, `--join-gap`, `--inertia`)."""
+options only object files take (`--scale`, `--largest-component`, `--join-gap`, `--inertia`,
+`--package-path`)."""
 
 from __future__ import annotations
 
@@ -31,7 +32,8 @@ def resolve_object(name_or_path: str | os.PathLike, **kw) -> ObjectSpec:
         name_or_path: A catalogue name (``PAPER_OBJECTS``); a primitive string such as
             ``sphere:0.12``, ``cube:0.08``, ``cylinder:0.1x0.3`` or ``cylinder:0.1`` (metres;
             length default CYLINDER_FAMILY_LENGTH); or the path of a mesh (any format trimesh
-            reads) or an ``.sdf``/``.urdf`` model file.
+            reads, a MuJoCo ``.msh``, Drake's tetrahedral ``.vtk``) or an ``.sdf``/``.urdf``/MJCF
+            model file.
         **kw: Passed on to :func:`paper_object`, :func:`sphere_object` (etc.),
             :func:`object_from_mesh` or :func:`object_from_sdf`.
 
@@ -69,13 +71,14 @@ def resolve_object(name_or_path: str | os.PathLike, **kw) -> ObjectSpec:
 
 def resolve_user_object(
     name_or_path: str, *, scale: float = 1.0, largest_component: bool = False, join_gap: float | None = None,
-    inertia: str = "check", **kw
+    inertia: str = "check", package_path=(), **kw
 ) -> ObjectSpec:
     """:func:`resolve_object` with the options that only object files take (a command line's
     ``--scale``, ``--largest-component``, ``--join-gap``: mesh files, and MJCF for the join gap;
-    ``--inertia``: model files): ObjectError if one is given for an object that does not take it."""
+    ``--inertia``: model files; ``--package-path``: SDF and URDF files): ObjectError if one is given
+    for an object that does not take it."""
     text = str(name_or_path).strip()
-    given = mesh_options(scale, largest_component, join_gap, inertia)
+    given = mesh_options(scale, largest_component, join_gap, inertia, package_path)
     if not given:
         return resolve_object(text, **kw)
     taken = options_for(text, **given)
@@ -83,7 +86,9 @@ def resolve_user_object(
         if option not in taken:
             flag = "--" + option.replace("_", "-")
             kinds = ("model files (SDF, URDF, MJCF)" if option == "inertia" else
-                     "mesh files and MJCF models" if option == "join_gap" else "mesh files (OBJ, STL, PLY, glTF)")
+                     "mesh files and MJCF models" if option == "join_gap" else
+                     "SDF and URDF model files" if option == "package_path" else
+                     "mesh files (OBJ, STL, PLY, glTF, MuJoCo .msh, Drake .vtk)")
             raise ObjectError(f"{text}: {flag} applies to {kinds} only")
     if not (scale > 0.0 and math.isfinite(scale)):
         raise ObjectError(f"--scale must be positive, got {scale!r}")
@@ -106,7 +111,7 @@ def is_model_file(name_or_path: str) -> bool:
 
 
 def mesh_options(scale: float = 1.0, largest_component: bool = False, join_gap: float | None = None,
-                 inertia: str = "check") -> dict:
+                 inertia: str = "check", package_path=()) -> dict:
     """The object-file options that differ from their defaults, as keyword arguments of
     :func:`resolve_user_object` (plain data: a sweep's tasks carry them to its workers, and a
     record's fingerprint includes them)."""
@@ -119,16 +124,20 @@ def mesh_options(scale: float = 1.0, largest_component: bool = False, join_gap: 
         options["join_gap"] = float(join_gap)
     if inertia != "check":
         options["inertia"] = inertia
+    if package_path:
+        options["package_path"] = tuple(str(Path(p).expanduser().resolve()) for p in package_path)
     return options
 
 
 def options_for(name_or_path: str, **options) -> dict:
     """Of `options` (:func:`mesh_options`'s keywords), those the object takes: scale and
-    largest_component a mesh file, join_gap a mesh file or an MJCF model, inertia a model file."""
+    largest_component a mesh file, join_gap a mesh file or an MJCF model, inertia a model file,
+    package_path an SDF or URDF file (the ones that name ``package://`` URIs)."""
     text = str(name_or_path).strip()
     mjcf = is_model_file(text) and Path(text).suffix.lower() in (".xml", ".mjcf")
     takes = {"scale": is_mesh_file(text), "largest_component": is_mesh_file(text) or mjcf,
-             "join_gap": is_mesh_file(text) or mjcf, "inertia": is_model_file(text)}
+             "join_gap": is_mesh_file(text) or mjcf, "inertia": is_model_file(text),
+             "package_path": is_model_file(text) and not mjcf}
     return {k: v for k, v in options.items() if takes.get(k, False)}
 
 

@@ -75,8 +75,9 @@ ELONGATION_RATIO = 1.1
 CONVEXITY_TOLERANCE = 0.01
 
 MAX_FACES = 20_000  # a user mesh with more faces is simplified (quadric decimation) for contact
-# A user object larger or smaller than these (m) is probably not in metres (the hand spans ~0.3 m).
-PLAUSIBLE_EXTENTS = (0.01, 1.0)
+# Largest extents (m) of the objects this hand is for: a user's object outside them is probably not in
+# metres (objects/sizes.py warns below 1 cm, refuses outside 3 mm-0.5 m and names the likely --scale).
+PLAUSIBLE_EXTENTS = (0.01, 0.5)
 # A resting pose whose centre of mass lies at most this fraction of the object's largest extent
 # above its lowest possible resting height is stable enough not to warn: a tessellated sphere
 # stands on a vertex, and rolls off it lowering its centre by a fraction of a millimetre.
