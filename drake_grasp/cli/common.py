@@ -22,7 +22,8 @@ class OneLineParser(argparse.ArgumentParser):
 
 
 def add_mesh_options(p: argparse.ArgumentParser) -> None:
-    """--scale, --largest-component, --join-gap and --inertia, for every command that takes --object."""
+    """--scale, --largest-component, --join-gap, --inertia and --package-path, for every command that
+    takes --object."""
     p.add_argument("--scale", type=float, default=1.0, metavar="S",
                    help="multiply a mesh file's coordinates by S (e.g. 0.001 for a file in millimetres)")
     p.add_argument("--largest-component", action="store_true",
@@ -33,12 +34,16 @@ def add_mesh_options(p: argparse.ArgumentParser) -> None:
     p.add_argument("--inertia", default="check", choices=("check", "file", "geometry"),
                    help="a model file's inertial: check it and replace an implausible one by the collision "
                    "geometry's (default), keep the file's (refused if it cannot be simulated), or use the geometry's")
+    p.add_argument("--package-path", action="append", default=[], metavar="DIR",
+                   help="resolve an SDF/URDF file's package:// URIs against DIR's package.xml or those below it "
+                   "(repeatable; package.xml files in the file's folder and the 8 above it are found without it)")
 
 
 def mesh_option_args(args) -> dict:
     """The object-file options of a command line (keyword arguments of resolve_user_object)."""
     return {"scale": args.scale, "largest_component": args.largest_component,
-            "join_gap": getattr(args, "join_gap", None), "inertia": getattr(args, "inertia", "check")}
+            "join_gap": getattr(args, "join_gap", None), "inertia": getattr(args, "inertia", "check"),
+            "package_path": tuple(getattr(args, "package_path", None) or ())}
 
 
 def resolve_object_arg(args):

@@ -10,7 +10,8 @@ import math
 import pathlib
 
 from drake_grasp.cli.common import (UsageError, add_common, add_mesh_options, check_out_dir, check_planner_args,
-                                    check_seed, emit, jsonable, resolve_object_arg, save_record, single_run_inputs)
+                                    check_seed, emit, jsonable, mesh_option_args, resolve_object_arg, save_record,
+                                    single_run_inputs)
 from drake_grasp.robot.hand import ComplianceMode
 
 
@@ -138,7 +139,7 @@ def _run_trial(args) -> int:
     error = _estimate_error_arg(args.estimate_error)
     options = dict(scenario_file=args.scenario or "", scenario_name=args.scenario_name, scale=args.scale,
                    largest_component=args.largest_component, join_gap=args.join_gap, inertia=args.inertia,
-                   estimate_error=error)
+                   package_path=mesh_option_args(args)["package_path"], estimate_error=error)
     if args.method == "eigengrasp":
         settings = _planner_settings_args(args, error)
         spec = trial.TrialSpec(args.object, "eigengrasp", settings.label, args.seed, planner=settings, **options)

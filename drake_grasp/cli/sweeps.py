@@ -12,7 +12,7 @@ import sys
 import time
 
 from drake_grasp.cli.common import (UsageError, add_common, add_executor_args, add_mesh_options, check_out_dir,
-                                    check_planner_args, check_seed, jsonable, load_scenario_arg)
+                                    check_planner_args, check_seed, jsonable, load_scenario_arg, mesh_option_args)
 
 
 def add_fig4(sub) -> None:
@@ -171,7 +171,7 @@ def objects_arg(args, default: tuple[str, ...]) -> tuple[str, ...]:
         if len(set(objects)) != len(objects):
             raise UsageError(f"--objects names an object twice: {args.objects}")
     options = mesh_options(args.scale, args.largest_component, getattr(args, "join_gap", None),
-                           getattr(args, "inertia", "check"))
+                           getattr(args, "inertia", "check"), getattr(args, "package_path", None) or ())
     for option in options:
         if not any(option in options_for(o, **options) for o in objects):
             raise UsageError(f"--{option.replace('_', '-')} applies to object files (mesh or model files) that take "
@@ -220,7 +220,7 @@ def _run_fig6(args) -> int:
     trials = args.trials or (2 if args.quick else 10)
     config = fig6.Fig6Config(objects=tuple(objects), trials=trials, seed=args.seed, method=args.method,
                              scale=args.scale, largest_component=args.largest_component, join_gap=args.join_gap,
-                             inertia=args.inertia)
+                             inertia=args.inertia, package_path=mesh_option_args(args)["package_path"])
     out = check_out_dir(args.out or args.out_default)
     start = time.perf_counter()
     with executor:
@@ -251,7 +251,7 @@ def _run_fig7(args) -> int:
                              seed=args.seed, steps=args.steps, energy=args.energy,
                              compliant_method=args.compliant_method, scale=args.scale,
                              largest_component=args.largest_component, join_gap=args.join_gap,
-                             inertia=args.inertia)
+                             inertia=args.inertia, package_path=mesh_option_args(args)["package_path"])
     out = check_out_dir(args.out or args.out_default)
     start = time.perf_counter()
     with executor:

@@ -57,13 +57,15 @@ class Fig6Config:
     largest_component: bool = False
     join_gap: float | None = None
     inertia: str = "check"
+    package_path: tuple[str, ...] = ()  # --package-path: where SDF/URDF files' package:// URIs resolve
 
     def object_options(self, obj: str) -> dict:
         """The keyword arguments that resolve `obj` as this sweep does (`--scale`,
         `--largest-component` for a mesh file; none for a catalogue object or a primitive)."""
         from drake_grasp.objects.names import mesh_options, options_for
 
-        return options_for(obj, **mesh_options(self.scale, self.largest_component, self.join_gap, self.inertia))
+        return options_for(obj, **mesh_options(self.scale, self.largest_component, self.join_gap, self.inertia,
+                                               self.package_path))
 
     def __post_init__(self):
         if self.trials < 1:

@@ -65,13 +65,15 @@ class Fig7Config:
     largest_component: bool = False
     join_gap: float | None = None
     inertia: str = "check"
+    package_path: tuple[str, ...] = ()  # --package-path: where SDF/URDF files' package:// URIs resolve
 
     def object_options(self, obj: str) -> dict:
         """The keyword arguments that resolve `obj` as this comparison does (`--scale`,
         `--largest-component` for a mesh file; none for anything else)."""
         from drake_grasp.objects.names import mesh_options, options_for
 
-        return options_for(obj, **mesh_options(self.scale, self.largest_component, self.join_gap, self.inertia))
+        return options_for(obj, **mesh_options(self.scale, self.largest_component, self.join_gap, self.inertia,
+                                               self.package_path))
 
     @property
     def plan_tag(self) -> str:
@@ -317,7 +319,7 @@ def run_comparison(config: Fig7Config, out_dir: pathlib.Path, fig6_dir: pathlib.
         f6_config = fig6.Fig6Config(objects=config.objects, trials=config.trials, seed=config.seed,
                                     method=config.compliant_method, scale=config.scale,
                                     largest_component=config.largest_component, join_gap=config.join_gap,
-                                    inertia=config.inertia)
+                                    inertia=config.inertia, package_path=config.package_path)
         f6_specs = fig6.trial_specs(f6_config, scenario_file, scenario_name)
         f6_prints = fingerprints(f6_specs)
         # Fig. 6's records of the same inputs (same fingerprints) are reused; its file is only read.

@@ -56,7 +56,7 @@ def fingerprints(specs: list["TrialSpec"]) -> list[str]:
         where = (s.scenario_file, s.scenario_name)
         if where not in scenarios:
             scenarios[where] = scenario_fingerprint(*where)
-        which = (s.object, s.scale, s.largest_component, s.join_gap, s.inertia)
+        which = (s.object, s.scale, s.largest_component, s.join_gap, s.inertia, s.package_path)
         if which not in objects:
             objects[which] = object_fingerprint(s.object, **s.object_options())
         out.append(trial_fingerprint(s, scenarios[where], objects[which]))

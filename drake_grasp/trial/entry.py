@@ -106,8 +106,8 @@ def run_shared(specs: list[TrialSpec], *, scenario: Scenario | None = None, obj:
     """
     if not specs:
         return []
-    where = {(s.scenario_file, s.scenario_name, s.object, s.scale, s.largest_component, s.join_gap, s.inertia)
-             for s in specs}
+    where = {(s.scenario_file, s.scenario_name, s.object, s.scale, s.largest_component, s.join_gap, s.inertia,
+              s.package_path) for s in specs}
     if len(where) > 1:
         raise ValueError("run_shared: the specs name more than one scenario or object")
     if scenario is None or obj is None:

@@ -51,7 +51,7 @@ class TrialSpec:
         scenario_file, scenario_name: the station scenario.
         planned: for planned grasps: {"X_OH": 4x4 list, "joint_angles": 8 floats} (and what else the
             planner said of it: epsilon, energy, planner_rank).
-        scale, largest_component, join_gap, inertia: an object file's options
+        scale, largest_component, join_gap, inertia, package_path: an object file's options
             (`objects.resolve_user_object`).
         estimate_error: a known error added to the estimate the grasp is computed from (issue 15's
             capture regions; `estimate_error.EstimateError`): for "oracle" the ground-truth estimate,
@@ -72,6 +72,7 @@ class TrialSpec:
     largest_component: bool = False
     join_gap: float | None = None
     inertia: str = "check"
+    package_path: tuple[str, ...] = ()
     estimate_error: EstimateError | None = None
     planner: PlannerSettings | None = None
 
@@ -86,7 +87,7 @@ class TrialSpec:
         from drake_grasp.objects.names import mesh_options, options_for
 
         return options_for(self.object, **mesh_options(self.scale, self.largest_component, self.join_gap,
-                                                       self.inertia))
+                                                       self.inertia, self.package_path))
 
     @property
     def has_estimate_error(self) -> bool:
