@@ -37,3 +37,14 @@ def test_sweeps_reject_a_scale_with_no_mesh_file(tmp_path, capsys):
     assert cli.main(["fig6", "--objects", "sponge,sphere:0.1", "--scale", "0.001", "--out", str(tmp_path / "o")]) == 2
     assert "--scale applies to object files (mesh or model files) that take it, and --objects names none" in capsys.readouterr().err
     assert not (tmp_path / "o").exists()
+
+
+def test_output_piped_into_a_reader_that_stops_early_ends_quietly():
+    """`drake-grasp objects check X | head -1`: no BrokenPipeError traceback on stderr (the reader here,
+    `true`, exits at once, so that the command's output always meets a closed pipe)."""
+    import subprocess
+    import sys
+
+    pipe = subprocess.run(f"{sys.executable} -m drake_grasp.cli objects check cube:0.05 | true", shell=True,
+                          capture_output=True, text=True, timeout=120)
+    assert "Traceback" not in pipe.stderr and "BrokenPipe" not in pipe.stderr, pipe.stderr

@@ -64,6 +64,10 @@ def main(argv: list[str] | None = None) -> int:
     from drake_grasp.objects import MeshNote, UnstablePoseWarning
 
     args = _parser().parse_args(argv)
+    if argv is None and hasattr(signal, "SIGPIPE") and threading.current_thread() is threading.main_thread():
+        # As a console command (not called from Python): output piped into a reader that stops early
+        # (`| head`) ends the command quietly, as other command-line tools do, not with a traceback.
+        signal.signal(signal.SIGPIPE, signal.SIG_DFL)
 
     def one_line(message, category, *rest, **kwargs):
         kind = "note" if issubclass(category, MeshNote) else "warning"
