@@ -26,7 +26,7 @@ import dataclasses
 import math
 
 import numpy as np
-from pydrake.geometry import Box, SceneGraph
+from pydrake.geometry import SceneGraph
 from pydrake.math import RigidTransform
 from pydrake.multibody.parsing import Parser
 from pydrake.multibody.plant import AddMultibodyPlantSceneGraph
@@ -141,14 +141,9 @@ class QuasiStaticHand:
         for geometry in self._link_geometries[body_name]:
             shape = inspector.GetShape(geometry)
             X_BG = inspector.GetPoseInFrame(geometry)
-            if isinstance(shape, Box):
-                half = np.array([shape.width(), shape.depth(), shape.height()]) / 2
-                points = np.array(np.meshgrid(*[[-1, 1]] * 3)).reshape(3, -1).T * half
-            else:  # a convex mesh (the distal link): the vertices of its hull
-                hull = inspector.GetConvexHull(geometry)
-                points = np.array([hull.vertex(i) for i in range(hull.num_vertices())])
-            for p_G in points:
-                p = X_BG @ p_G
+            half = np.array([shape.width(), shape.depth(), shape.height()]) / 2  # boxes
+            for corner in np.array(np.meshgrid(*[[-1, 1]] * 3)).reshape(3, -1).T:
+                p = X_BG @ (corner * half)
                 reach = max(reach, math.hypot(p[0], p[1]))
         return reach
 

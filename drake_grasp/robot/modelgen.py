@@ -23,9 +23,6 @@ from drake_grasp.robot import arm, hand
 from drake_grasp.paths import MODELS_DIR
 
 HAND_SDF = MODELS_DIR / "barrett_hand" / "bh280.sdf"
-# Where the distal link's BH8-280 shape (hand.distal_link_points, `distal_obj`) goes once the model
-# uses it (docs/design.md §4.1a: not yet).
-DISTAL_OBJ = MODELS_DIR / "barrett_hand" / "bh280_distal.obj"
 WAM_SDF = MODELS_DIR / "wam" / "wam7.sdf"
 
 # Rigid-hydroelastic fingers and palm: the objects carry the compliance of the contact (their
@@ -69,12 +66,12 @@ def _pose(X: RigidTransform, relative_to: str | None = None) -> str:
     return f"<pose{attr}>{_fmt(X.translation())} {_fmt(rpy)}</pose>"
 
 
-def _box_inertia(mass: float, size, X_LCom: RigidTransform | None = None) -> str:
+def _box_inertia(mass: float, size) -> str:
     sx, sy, sz = size
     ixx = mass * (sy**2 + sz**2) / 12
     iyy = mass * (sx**2 + sz**2) / 12
     izz = mass * (sx**2 + sy**2) / 12
-    return _inertia_xml(mass, (ixx, iyy, izz), X_LCom)
+    return _inertia_xml(mass, (ixx, iyy, izz))
 
 
 def _inertia_xml(mass, diagonal, X_LCom: RigidTransform | None = None) -> str:
@@ -112,16 +109,10 @@ def _box_geometry(name: str, X_LG: RigidTransform, size, color: str, collide: bo
     return xml
 
 
-def _convex_geometry(name: str, uri: str, color: str) -> str:
-    """Visual and collision of a link whose shape is the convex mesh `uri` (beside the SDF)."""
-    shape = f"<geometry><mesh><uri>{uri}</uri><drake:declare_convex/></mesh></geometry>"
-    return (f'<visual name="{name}_visual">{shape}<material><diffuse>{color}</diffuse></material></visual>'
-            f'<collision name="{name}_collision">{shape}{_hand_proximity("convex")}</collision>')
-
-
 def distal_obj() -> str:
     """The distal link's shape as Wavefront OBJ text: the convex hull of `hand.distal_link_points`,
-    in the link's frame (m), faces wound outward."""
+    in the link's frame (m), faces wound outward. Not written to models/ yet: the model's distal links
+    are still boxes (docs/design.md §4.1a says why)."""
     from scipy.spatial import ConvexHull
 
     points = hand.distal_link_points()
