@@ -26,7 +26,7 @@ import dataclasses
 import math
 
 import numpy as np
-from pydrake.geometry import SceneGraph
+from pydrake.geometry import Box, SceneGraph
 from pydrake.math import RigidTransform
 from pydrake.multibody.parsing import Parser
 from pydrake.multibody.plant import AddMultibodyPlantSceneGraph
@@ -141,9 +141,14 @@ class QuasiStaticHand:
         for geometry in self._link_geometries[body_name]:
             shape = inspector.GetShape(geometry)
             X_BG = inspector.GetPoseInFrame(geometry)
-            half = np.array([shape.width(), shape.depth(), shape.height()]) / 2  # boxes
-            for corner in np.array(np.meshgrid(*[[-1, 1]] * 3)).reshape(3, -1).T:
-                p = X_BG @ (corner * half)
+            if isinstance(shape, Box):
+                half = np.array([shape.width(), shape.depth(), shape.height()]) / 2
+                points_G = np.array(np.meshgrid(*[[-1, 1]] * 3)).reshape(3, -1).T * half
+            else:  # a convex mesh (the distal links): the vertices of the hull SceneGraph uses
+                hull = inspector.GetConvexHull(geometry)
+                points_G = [hull.vertex(i) for i in range(hull.num_vertices())]
+            for p_G in points_G:
+                p = X_BG @ p_G
                 reach = max(reach, math.hypot(p[0], p[1]))
         return reach
 

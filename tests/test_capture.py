@@ -50,10 +50,10 @@ def test_bad_configurations_are_refused(bad):
 
 
 def _tiny_study(tmp_path, scenario_file, depth, replays=0):
-    # One cell from no error to 6 cm along and across a 10 cm sphere (measured: the oracle's spherical
-    # grasp holds at no error and misses 6 cm off along one of the axes), refined `depth` times where
-    # its corners disagree.
-    config = capture.CaptureConfig(objects=("sphere:0.1",), grasps=("spherical",), planes=("position",),
+    # One cell from no error to 6 cm along and across a 10 cm sphere (measured: the oracle's box grasp
+    # holds at no error and misses 6 cm off along both axes), refined `depth` times where its corners
+    # disagree.
+    config = capture.CaptureConfig(objects=("sphere:0.1",), grasps=("box",), planes=("position",),
                                    methods=("oracle",), offset_cm=(0.0, 6.0), base=1, depth=depth)
     maps, lines = capture.run(config, tmp_path, LocalExecutor(2), scenario_file=str(scenario_file),
                               replays_per_kind=replays)

@@ -124,11 +124,11 @@ def test_wam_flange_matches_dh_table(q):
 def test_model_files_are_generated_from_the_facts():
     assert modelgen.HAND_SDF.read_text() == modelgen.hand_sdf(), "run: drake-grasp models"
     assert modelgen.WAM_SDF.read_text() == modelgen.wam_sdf(), "run: drake-grasp models"
+    assert modelgen.DISTAL_OBJ.read_text() == modelgen.distal_obj(), "run: drake-grasp models"
 
 
 def test_the_bh8_280s_distal_link_shape_has_its_pad_taper_and_rounded_tip(tmp_path):
-    """The BH8-280's distal link as measured (hand.py's numbers; not used by the model yet, design.md
-    §4.1a): the tip frame lies on the flat pad, the back tapers, and the rounded tip reaches 8.5 mm
+    """The BH8-280's distal link as measured (hand.py's numbers, design.md §4.1a): the tip frame lies on the flat pad, the back tapers, and the rounded tip reaches 8.5 mm
     past A3, narrower than the link and below the pad, so its leading point is not a square edge.
     Its mesh is a closed convex solid that Drake loads as a convex shape."""
     import trimesh
@@ -151,6 +151,26 @@ def test_the_bh8_280s_distal_link_shape_has_its_pad_taper_and_rounded_tip(tmp_pa
     assert tip[:, 1].max() < hand.D3 - 0.002  # and in the closing plane: the nose lies below the pad
     assert hand.A3 < hand.distal_pad_end() < hand.DISTAL_TIP_REACH
     assert Convex(str(path)).GetConvexHull().num_vertices() == len(mesh.vertices)
+
+
+def test_the_model_s_distal_links_are_that_shape_and_the_sweep_follows_their_tips():
+    """The hand model uses the mesh (convex, so SceneGraph collides with its exact hull), and the
+    fingertips' sweep below the palm, which sets every top-down grasp's height, is that shape's."""
+    builder, plant, model = _load(modelgen.HAND_SDF)
+    plant.Finalize()
+    diagram = builder.Build()
+    inspector = diagram.GetSubsystemByName("scene_graph").model_inspector()
+    body = plant.GetBodyByName("bh_finger_1_distal", model)
+    (geometry,) = plant.GetCollisionGeometriesForBody(body)
+    hull = inspector.GetConvexHull(geometry)
+    reach = max(hull.vertex(i)[0] for i in range(hull.num_vertices()))
+    assert reach == pytest.approx(hand.DISTAL_TIP_REACH, abs=1e-6)
+    assert body.default_mass() == pytest.approx(hand.DISTAL_MASS)
+    # The sweep's deepest point over the shape lies deeper than the old box's square tip edge at A3.
+    box_edge = np.array([[hand.A3, y, 0.0] for y in (-hand.D3, hand.D3)])
+    box_depth = max(float(hand.distal_points_in_base(f, 0.0, q, q / 3, box_edge)[:, 2].max()) - hand.PALM_HEIGHT
+                    for q in np.linspace(0, hand.PROXIMAL_LIMITS[1], 141) for f in hand.FINGERS)
+    assert hand.fingertip_sweep_depth(0.0) > box_depth
 
 
 def test_hand_joint_names_ranges_and_masses():

@@ -14,9 +14,11 @@ face the object when grasping:
   puts them 18 and 52 mm along its 70 mm link); normal +y.
 * distal links: on the inner pad (``D3`` along the link's +y), at ``DISTAL_CONTACT_FRACTIONS`` of A3;
   normal +y.
-* fingertips: at the tip frame (the end of the pad, A3 along x and D3 along y), normal halfway
-  between the link's direction and the pad normal, (1, 1, 0)/√2 in the distal frame (GraspIt!'s
-  fingertips.xml has the same 45° normal).
+* fingertips: where the flat pad ends and the rounded tip begins (``hand.distal_pad_end()``, 58 mm
+  along the link, D3 along y: the BH8-280's fingertip, docs/design.md §4.1a), normal halfway between
+  the link's direction and the pad normal, (1, 1, 0)/√2 in the distal frame (GraspIt!'s
+  fingertips.xml has the same 45° normal; on the rounded tip's convex hull that edge is where a 45°
+  normal meets it).
 
 Link frames are the D-H frames of hand.py (x along the link, y toward the grasping side, z along the
 joint axis), which are also our model's body frames. Forward kinematics here is pure numpy: every
@@ -43,7 +45,7 @@ LINK_FRICTION = 0.2
 FINGERTIP_FRICTION = 1.0
 
 _PROXIMAL_INNER_Y = hand.PALM_HEIGHT - hand.DW  # inner face of the proximal box (modelgen.py).
-_DISTAL_INNER_Y = hand.D3  # inner pad of the distal box (modelgen.py).
+_DISTAL_INNER_Y = hand.DISTAL_PAD_Y  # the distal link's flat inner pad (hand.distal_link_points).
 
 
 @dataclasses.dataclass(frozen=True)
@@ -75,7 +77,8 @@ def _finger_contacts(finger: int) -> list[VirtualContact]:
     contacts += [VirtualContact(distal, (f * hand.A3, _DISTAL_INNER_Y, 0.0), (0.0, 1.0, 0.0), LINK_FRICTION)
                  for f in DISTAL_CONTACT_FRACTIONS]
     half = math.sqrt(0.5)
-    contacts.append(VirtualContact(distal, (hand.A3, _DISTAL_INNER_Y, 0.0), (half, half, 0.0), FINGERTIP_FRICTION))
+    contacts.append(VirtualContact(distal, (hand.distal_pad_end(), _DISTAL_INNER_Y, 0.0), (half, half, 0.0),
+                                   FINGERTIP_FRICTION))
     return contacts
 
 

@@ -242,14 +242,14 @@ def distal_link_points():
 def fingertip_sweep_depth(spread: float = 0.0, samples: int = 141) -> float:
     """How far beyond the palm surface the fingers reach while closing in the coupled phase, m.
 
-    The deepest point, along the palm normal, of the distal links' tip edges over a free closing
-    (distal = proximal / 3) of every finger at the given spread. A grasp that brings the palm closer
-    than this to a table lets the fingertips strike it.
+    The deepest point, along the palm normal, of the distal links' shape (`distal_link_points`: the
+    sweep's deepest point is on the rounded tip's outer side) over a free closing (distal = proximal
+    / 3) of every finger at the given spread. A grasp that brings the palm closer than this to a
+    table lets the fingertips strike it.
     """
     import numpy as np
 
-    tip_edge = np.array([[A3, y, z] for y in (-DISTAL_THICKNESS / 2, DISTAL_THICKNESS / 2)
-                         for z in (-FINGER_WIDTH / 2, FINGER_WIDTH / 2)])
+    tip_edge = distal_link_points()
     depth = 0.0
     for proximal in np.linspace(PROXIMAL_LIMITS[0], PROXIMAL_LIMITS[1], samples):
         for finger in FINGERS:

@@ -23,6 +23,7 @@ from drake_grasp.robot import arm, hand
 from drake_grasp.paths import MODELS_DIR
 
 HAND_SDF = MODELS_DIR / "barrett_hand" / "bh280.sdf"
+DISTAL_OBJ = MODELS_DIR / "barrett_hand" / "bh280_distal.obj"
 WAM_SDF = MODELS_DIR / "wam" / "wam7.sdf"
 
 # Rigid-hydroelastic fingers and palm: the objects carry the compliance of the contact (their
@@ -74,14 +75,35 @@ def _box_inertia(mass: float, size) -> str:
     return _inertia_xml(mass, (ixx, iyy, izz))
 
 
-def _inertia_xml(mass, diagonal, X_LCom: RigidTransform | None = None) -> str:
+def _inertia_xml(mass, diagonal, X_LCom: RigidTransform | None = None, products=(0.0, 0.0, 0.0)) -> str:
     pose = _pose(X_LCom) if X_LCom is not None else ""
     ixx, iyy, izz = diagonal
+    ixy, ixz, iyz = products
     return (
         f"<inertial>{pose}<mass>{mass:.9g}</mass><inertia>"
         f"<ixx>{ixx:.9g}</ixx><iyy>{iyy:.9g}</iyy><izz>{izz:.9g}</izz>"
-        "<ixy>0</ixy><ixz>0</ixz><iyz>0</iyz></inertia></inertial>"
+        f"<ixy>{ixy:.9g}</ixy><ixz>{ixz:.9g}</ixz><iyz>{iyz:.9g}</iyz></inertia></inertial>"
     )
+
+
+def _distal_inertia() -> str:
+    """The distal link's inertia: `hand.DISTAL_MASS` spread uniformly over its shape's convex hull,
+    about the hull's centre of mass, in the link frame."""
+    import trimesh
+
+    hull = trimesh.convex.convex_hull(hand.distal_link_points())
+    hull.density = hand.DISTAL_MASS / hull.volume
+    I = np.asarray(hull.moment_inertia)  # about the centre of mass, kg m^2
+    X_LCom = RigidTransform(np.asarray(hull.center_mass, float))
+    return _inertia_xml(hand.DISTAL_MASS, np.diag(I), X_LCom, (I[0, 1], I[0, 2], I[1, 2]))
+
+
+def _distal_geometry() -> str:
+    """Visual and collision of a distal link: the mesh `distal_obj` writes, beside the SDF file, its
+    convex hull declared so that Drake uses it as a convex shape (rigid hydroelastic, exact hull)."""
+    shape = f"<geometry><mesh><uri>{DISTAL_OBJ.name}</uri><drake:declare_convex/></mesh></geometry>"
+    return (f'<visual name="distal_visual">{shape}<material><diffuse>{_FINGER_GREY}</diffuse></material></visual>'
+            f'<collision name="distal_collision">{shape}{_hand_proximity("convex")}</collision>')
 
 
 def _hand_proximity(shape: str) -> str:
@@ -111,8 +133,8 @@ def _box_geometry(name: str, X_LG: RigidTransform, size, color: str, collide: bo
 
 def distal_obj() -> str:
     """The distal link's shape as Wavefront OBJ text: the convex hull of `hand.distal_link_points`,
-    in the link's frame (m), faces wound outward. Not written to models/ yet: the model's distal links
-    are still boxes (docs/design.md §4.1a says why)."""
+    in the link's frame (m), faces wound outward: the distal links' visual and collision geometry
+    (models/barrett_hand/bh280_distal.obj; docs/design.md §4.1a)."""
     from scipy.spatial import ConvexHull
 
     points = hand.distal_link_points()
@@ -181,7 +203,7 @@ def hand_sdf() -> str:
         f"{_pose(RigidTransform([0, 0, hand.PALM_HEIGHT + 0.002]))}</frame>"
     )
 
-    prox_len, dist_len = hand.A2, hand.A3
+    prox_len = hand.A2
     for finger in hand.FINGERS:
         frames = _hand_link_frames(finger)
         knuckle, proximal, distal = (f"bh_finger_{finger}_{n}" for n in ("knuckle", "proximal", "distal"))
@@ -228,15 +250,11 @@ def hand_sdf() -> str:
             "<velocity>6.3</velocity></limit><dynamics><damping>0.005</damping></dynamics>"
             "</axis></joint>"
         )
-        # Distal link: a box along +x whose inner (+y) face holds the fingertip frame. (The BH8-280's
-        # shape, hand.distal_link_points, is measured and written by distal_obj, but not used yet:
-        # docs/design.md §4.1a says what it did to the spherical grasp.)
-        dist_size = (dist_len, hand.DISTAL_THICKNESS, hand.FINGER_WIDTH)
-        X_DG = RigidTransform([dist_len / 2, 0, 0])
+        # Distal link: the BH8-280's (hand.distal_link_points: flat inner pad holding the fingertip
+        # frame, tapered back, rounded tip), one convex mesh in the link's D-H frame.
         parts.append(
             f'<link name="{distal}">{_pose(frames["distal"], proximal)}'
-            f"{_box_inertia(hand.DISTAL_MASS, dist_size)}"
-            f'{_box_geometry("distal", X_DG, dist_size, _FINGER_GREY, True)}'
+            f"{_distal_inertia()}{_distal_geometry()}"
             "</link>"
         )
         lo, hi = hand.DISTAL_LIMITS
@@ -340,9 +358,9 @@ def _wam_segment_visual(name: str, p_LE, radius: float) -> str:
 
 
 def write_models() -> list[pathlib.Path]:
-    """Writes the hand and WAM SDF files; returns their paths."""
+    """Writes the hand and WAM SDF files and the distal links' mesh; returns their paths."""
     written = []
-    for path, text in ((HAND_SDF, hand_sdf()), (WAM_SDF, wam_sdf())):
+    for path, text in ((HAND_SDF, hand_sdf()), (DISTAL_OBJ, distal_obj()), (WAM_SDF, wam_sdf())):
         path.parent.mkdir(parents=True, exist_ok=True)
         path.write_text(text)
         written.append(path)
