@@ -18,13 +18,22 @@ from drake_grasp.perception.exploration import explore
 from drake_grasp.perception.wiring import (
     AddExplorationSequencer, AddVisualPrimitives, start_camera_pose, start_configuration,
 )
-from drake_grasp.station import MakeStation, Scenario, load_scenario
+from drake_grasp.station import DEFAULT_SCENARIO_FILE, MakeStation, Scenario, default_scenario_name, load_scenario
 from drake_grasp.trial import PlannerSettings, TrialRecord, TrialSpec, plan_reachable_grasp, run
 from drake_grasp.trial.execution import execute
+
+
+
+def scenario_for(object_name: str) -> Scenario:
+    """The scenario a trial of this object uses when none is named: the best estimate (table-top)
+    for an object file or a generated object, the paper's algorithm for its objects and primitives
+    (`station.default_scenario_name`; `TrialSpec` without a scenario name does the same)."""
+    return load_scenario(DEFAULT_SCENARIO_FILE, default_scenario_name(object_name))
+
 
 __all__ = [
     "AddCompliantGraspSupervisor", "AddExplorationSequencer", "AddVisualPrimitives", "MakeStation", "ObjectSpec",
     "PlannerSettings", "Scenario", "TrialRecord", "TrialSpec", "compare", "execute", "explore", "ground_truth",
-    "load_scenario", "plan_reachable_grasp", "resolve_object", "resolve_user_object", "run", "start_camera_pose",
-    "start_configuration",
+    "load_scenario", "plan_reachable_grasp", "resolve_object", "resolve_user_object", "run", "scenario_for",
+    "start_camera_pose", "start_configuration",
 ]

@@ -107,6 +107,29 @@ class Scenario:
 
 DEFAULT_SCENARIO_FILE = DIAGRAMS_DIR / "station.scenarios.yaml"
 
+# The scenario of the paper's algorithm (its visual primitives: the object's silhouettes), which the
+# paper's experiments (`reproduce`, fig4, fig6, fig7, capture) keep; and that of the best estimate the
+# project has (the table-top estimate: a column solid over the exploration's depth views, which also
+# measures the table and the flat resemblance; docs/results/estimates.md).
+PAPER_SCENARIO_NAME = "default"
+BEST_SCENARIO_NAME = "table_top"
+
+
+def default_scenario_name(object_name: str, scenario_file: str | pathlib.Path | None = None) -> str:
+    """The scenario a single run uses when none is named (docs/trials.md, "Which estimate").
+
+    The paper's objects (catalogue names) and primitive strings (sphere:0.12) keep the paper's
+    algorithm, so that one trial of them is one trial of its figures; anything else a user brings
+    (a mesh or model file, a generated object) gets the best estimate. A scenario file of the user's
+    own is read as it is: its "default" scenario.
+    """
+    from drake_grasp.objects.names import is_mesh_file, is_model_file
+
+    if scenario_file and pathlib.Path(scenario_file).resolve() != DEFAULT_SCENARIO_FILE.resolve():
+        return PAPER_SCENARIO_NAME
+    name = str(object_name).strip()
+    return BEST_SCENARIO_NAME if is_mesh_file(name) or is_model_file(name) else PAPER_SCENARIO_NAME
+
 
 def load_scenario(filename: str | pathlib.Path = DEFAULT_SCENARIO_FILE, scenario_name: str = "default") -> Scenario:
     """Loads the scenario `scenario_name` from a YAML file of named scenarios.

@@ -131,6 +131,8 @@ def test_the_whole_algorithm_grasps_the_soccer_ball_from_the_camera_alone(short_
     assert record.resemblances["sphere"] > 0.5
     # The decision came when the exploration ended, in the same simulation as the grasp.
     assert 12.0 < record.estimate["decided_at"] < 13.0 < record.sim_time
+    # The record and its summary line say which estimate placed the grasp (this scenario: the paper's).
+    assert record.estimate["estimator"] == "silhouettes" and "(silhouettes estimate)" in record.summary()
     assert record.estimate_errors["centre"] < 0.01 and record.estimate_errors["shape_correct"]
 
 

@@ -53,7 +53,17 @@ def resolve_object_arg(args):
     return resolve_user_object(args.object, **mesh_option_args(args))
 
 
-def add_common(p: argparse.ArgumentParser, scenario: bool = True, seed: bool = True) -> None:
+# --scenario-name's default for the commands whose default depends on the object (`add_common`'s
+# scenario="object").
+_BY_OBJECT_HELP = ("scenario in that file (default: table_top, the best estimate, for object files; default, the "
+                   "paper's silhouettes, for the paper's objects and primitives)")
+
+
+def add_common(p: argparse.ArgumentParser, scenario: bool | str = True, seed: bool = True) -> None:
+    """--seed, --out, --json and (`scenario`) --scenario and --scenario-name: True, the "default"
+    scenario unless named (the paper's algorithm: the paper's figures); "best", the best estimate
+    ("table_top"); "object" ("objects"), chosen by --object (by --objects: the best estimate if
+    any of them is an object file; `station.default_scenario_name`)."""
     if seed:  # (fig4's quasi-static sweep is deterministic: it has no seed)
         p.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
     p.add_argument("--out", metavar="DIR", help="directory for result files")
@@ -61,7 +71,15 @@ def add_common(p: argparse.ArgumentParser, scenario: bool = True, seed: bool = T
     if scenario:
         p.add_argument("--scenario", metavar="FILE.yaml",
                        help="scenario file (default: diagrams/station.scenarios.yaml)")
-        p.add_argument("--scenario-name", default="default", help="scenario in that file (default: default)")
+        if scenario in ("object", "objects"):
+            p.add_argument("--scenario-name", default=None, help=_BY_OBJECT_HELP)
+        elif scenario == "best":
+            p.add_argument("--scenario-name", default=None,
+                           help="scenario in that file (default: table_top, the best estimate; with a file of "
+                           "your own: default)")
+        else:
+            p.add_argument("--scenario-name", default="default",
+                           help="scenario in that file (default: default, the paper's algorithm)")
 
 
 def add_executor_args(p: argparse.ArgumentParser) -> None:
@@ -76,8 +94,21 @@ def add_executor_args(p: argparse.ArgumentParser) -> None:
 
 
 def load_scenario_arg(args):
-    from drake_grasp.station import DEFAULT_SCENARIO_FILE, load_scenario
+    """The scenario --scenario and --scenario-name name. With no name, it is chosen (and set on
+    `args`) from --object where the command has one, else it is the best estimate's (with the
+    project's scenario file; a file of the user's own: its "default")."""
+    from drake_grasp.station import (BEST_SCENARIO_NAME, DEFAULT_SCENARIO_FILE, PAPER_SCENARIO_NAME,
+                                     default_scenario_name, load_scenario)
 
+    if args.scenario_name is None:
+        if getattr(args, "object", None) is not None:
+            args.scenario_name = default_scenario_name(args.object, args.scenario)
+        elif hasattr(args, "objects"):  # a sweep: the paper's objects unless --objects names a file
+            names = [o.strip() for o in (args.objects or "").split(",") if o.strip()]
+            chosen = {default_scenario_name(o, args.scenario) for o in names}
+            args.scenario_name = BEST_SCENARIO_NAME if BEST_SCENARIO_NAME in chosen else PAPER_SCENARIO_NAME
+        else:
+            args.scenario_name = BEST_SCENARIO_NAME if not args.scenario else PAPER_SCENARIO_NAME
     return load_scenario(args.scenario or DEFAULT_SCENARIO_FILE, args.scenario_name)
 
 

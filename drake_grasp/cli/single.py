@@ -30,7 +30,7 @@ def add_demo(sub) -> None:
                       "(sphere:0.12, cube:0.08, cylinder:0.1x0.3) or a mesh file (OBJ, STL, PLY)")
     demo.add_argument("--mode", choices=[m.name.lower() for m in ComplianceMode],
                       help="compliance mode (default: spherical for round objects, else cylindrical)")
-    add_common(demo)
+    add_common(demo, scenario="object")
     demo.add_argument("--replay", metavar="FILE.html",
                       help="write a Meshcat replay that opens in a browser, no server needed")
     demo.set_defaults(run=_run_demo)
@@ -71,7 +71,7 @@ def add_trial(sub) -> None:
     planner.add_argument("--plan-seed", type=int, metavar="S", help="the planner's seed (default 0)")
     planner.add_argument("--rank", type=int, metavar="K",
                          help="execute the K-th best grasp the arm can reach (default 1)")
-    add_common(trial)
+    add_common(trial, scenario="object")
     trial.add_argument("--replay", metavar="FILE.html", help="write a Meshcat replay")
     trial.set_defaults(run=_run_trial)
 
@@ -115,7 +115,7 @@ def add_resemble(sub) -> None:
     resemble.add_argument("--object", required=True, metavar="NAME|PATH",
                           help="a catalogue object, a primitive (sphere:0.12, cube:0.08, cylinder:0.1x0.3) or a mesh file")
     resemble.add_argument("--nominal", action="store_true", help="place the object without the seed's variation")
-    add_common(resemble)
+    add_common(resemble, scenario="object")
     resemble.add_argument("--replay", metavar="FILE.html", help="write a Meshcat replay of the exploration")
     resemble.set_defaults(run=_run_resemble)
 

@@ -50,7 +50,7 @@ def add_fig6(sub) -> None:
     add_executor_args(fig6)
     fig6.add_argument("--method", choices=["compliant", "oracle"], default="compliant",
                       help="compliant: camera estimates (the paper's algorithm); oracle: ground truth")
-    add_common(fig6)
+    add_common(fig6, scenario="objects")
     fig6.set_defaults(run=_run_fig6, out_default="out/fig6")
 
 
@@ -80,7 +80,7 @@ def add_fig7(sub) -> None:
                       help="where Fig. 6's results are reused from (default out/fig6)")
     fig7.add_argument("--compliant-method", choices=["compliant", "oracle"], default="compliant",
                       help="estimates for compliance-centric trials run here (default: the camera)")
-    add_common(fig7)
+    add_common(fig7, scenario="objects")
     fig7.set_defaults(run=_run_fig7, out_default="out/fig7")
 
 
@@ -102,7 +102,7 @@ def add_novel(sub) -> None:
     add_executor_args(novel)
     novel.add_argument("--energy", choices=["contact", "contact-quality"], default="contact-quality",
                        help="the Eigengrasp planner's energy (default contact-quality)")
-    add_common(novel)
+    add_common(novel, scenario="best")
     novel.set_defaults(run=_run_novel, out_default="out/novel")
 
 

@@ -233,6 +233,16 @@ def ensure_objects(directory: pathlib.Path, count: int, seed: int) -> list[dict]
     return ensure_generated(directory, lambda staging: generate(count, seed, staging), count, (seed,))
 
 
+def _estimator_words(scenario_file: str, scenario_name: str) -> str:
+    """Which estimate placed the camera's grasps, in words, from the scenario's perception."""
+    from drake_grasp.station import DEFAULT_SCENARIO_FILE, load_scenario
+
+    scenario = load_scenario(scenario_file or DEFAULT_SCENARIO_FILE, scenario_name)
+    if scenario.perception.table_top is not None:
+        return "the camera's grasps are placed by the table-top estimate (the best the project has)"
+    return "the camera's grasps are placed by the paper's silhouette estimate"
+
+
 def run_study(config: NovelConfig, out_dir: pathlib.Path, objects: list[dict], executor, scenario_file: str = "",
               scenario_name: str = "default"):
     """Runs (or resumes) both methods on `objects` (manifest entries: {"file": path, "class": name}) and
@@ -273,6 +283,8 @@ def run_study(config: NovelConfig, out_dir: pathlib.Path, objects: list[dict], e
         planner_rows = select(trial_table(out_dir / "eigengrasp" / "fig7.csv", read_only=True).rows(), specs7,
                               fingerprints(specs7))
         lines = summary_lines(rows, chosen_trial_rows(compliant_rows, rows), planner_rows, config)
+        lines += ["", f"Scenario `{scenario_name}`" + (f" of {scenario_file}" if scenario_file else "") + ": "
+                  + _estimator_words(scenario_file, scenario_name) + "."]
         grasps = fig6.sweep_grasps(scenario_file, scenario_name)
         lines += ["", "## The camera against the true estimate", "",
                   "Each object's chosen grasp again from the ground-truth estimate (the same seeds):", ""]

@@ -86,6 +86,8 @@ def _compliant_record(trial: Assembled) -> TrialRecord:
         record.chosen_grasp = decision.chosen
         record.resemblances = dict(estimate.resemblances)
         record.estimate = {k: v for k, v in estimate.to_dict().items() if k not in ("evidence", "timings")}
+        # Which estimate placed the grasp: the table-top one (its column solid) or the paper's silhouettes.
+        record.estimate["estimator"] = "table-top" if estimate.table_top is not None else "silhouettes"
         record.estimate["decided_at"] = decision.time
         record.estimate["resemblance_margin"] = estimate.resemblance_margin
         if estimate.found and run.X_WO_decision is not None:

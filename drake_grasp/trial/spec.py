@@ -48,7 +48,9 @@ class TrialSpec:
         grasp: "spherical" | "cylindrical" | "box" for compliant methods ("" with "compliant": the
             algorithm's own choice); a label for planned grasps.
         seed: the trial's seed (its variation; shared by every method).
-        scenario_file, scenario_name: the station scenario.
+        scenario_file, scenario_name: the station scenario; no name (None): the paper's algorithm for
+            the paper's objects and primitives, the best estimate (table-top) for object files and
+            generated objects (`station.default_scenario_name`), resolved when the spec is made.
         planned: for planned grasps: {"X_OH": 4x4 list, "joint_angles": 8 floats} (and what else the
             planner said of it: epsilon, energy, planner_rank).
         scale, largest_component, join_gap, inertia, package_path: an object file's options
@@ -66,7 +68,7 @@ class TrialSpec:
     grasp: str
     seed: int
     scenario_file: str = ""
-    scenario_name: str = "default"
+    scenario_name: str | None = None
     planned: dict | None = None
     scale: float = 1.0
     largest_component: bool = False
@@ -77,6 +79,10 @@ class TrialSpec:
     planner: PlannerSettings | None = None
 
     def __post_init__(self):
+        if self.scenario_name is None:
+            from drake_grasp.station import default_scenario_name
+
+            object.__setattr__(self, "scenario_name", default_scenario_name(self.object, self.scenario_file))
         error = self.estimate_error
         if self.method == "eigengrasp" and error is not None and error.size_scale != 1:
             raise ValueError("a size error does not apply to the Eigengrasp planner (it has the exact model)")
