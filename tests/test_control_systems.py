@@ -187,3 +187,30 @@ def test_the_executor_runs_the_grasp_itself_when_reachable_and_names_every_turn_
     far = type(plan)(plan.grasp, plan.spread, RigidTransform(plan.X_WP_target.rotation(), [2.0, 0.0, 0.3]))
     with pytest.raises(ReachError, match=r"nor the grasp turned -120°, \+120° about the approach"):
         executor.plan_reachable_motion(far, q_start)
+
+
+def test_a_path_that_brings_the_arm_or_the_hand_base_to_the_table_is_unreachable(station):
+    """The arm's shell and the hand base stay clear of the table along a planned path: a top-down
+    palm 20 cm above the table is clear; brought down to 2 mm above it, the palm's housing is
+    within the margin, and plan_motion says so."""
+    from drake_grasp.control.arm_motion import TABLE_MARGIN, ReachError
+    from drake_grasp.grasps import GraspPlan
+    from pydrake.math import RigidTransform, RotationMatrix
+
+    plant, scenario = station.plant, station.scenario
+    q_start = np.asarray(scenario.protocol.start_configuration, float)
+    kinematics = ArmKinematics(plant, station.wam)
+    p = station.X_WO_nominal().translation()
+    down = RotationMatrix.MakeXRotation(np.pi)
+    q_high = kinematics.solve(RigidTransform(down, [p[0], p[1], 0.2]), q_start)
+    z, part = kinematics.lowest_point(q_high)
+    # From above, the lowest part is the hand base's palm face, 20 cm up; the arm is above it.
+    assert part == "hand base" and z == pytest.approx(0.2, abs=2e-3)
+    kinematics.check_table_clearance([q_high])
+    low = GraspPlan(None, 0.0, RigidTransform(down, [p[0], p[1], 0.002]), approach_distance=0.05,
+                    stop_on_contact=False)
+    executor = GraspExecutor(plant, station.scene_graph, station.wam, plant.GetBodyIndices(station.hand), None,
+                             q_start, scenario.protocol.execution)
+    with pytest.raises(ReachError, match="would strike the table"):
+        executor.plan_motion(low, q_start)
+    assert TABLE_MARGIN > 0

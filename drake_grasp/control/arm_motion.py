@@ -17,7 +17,12 @@ from pydrake.multibody.tree import ModelInstanceIndex
 from pydrake.solvers import Solve
 from pydrake.trajectories import PiecewisePolynomial
 
+from drake_grasp.robot import arm, hand
 from drake_grasp.robot.hand import HAND_JOINTS
+
+# How far above the table the arm's shell and the hand base must stay along a planned path, m (a
+# choice: the fingers, not the arm or the palm's housing, are what may touch the table).
+TABLE_MARGIN = 0.005
 
 
 class ReachError(RuntimeError):
@@ -36,18 +41,56 @@ class ArmKinematics:
         wam: the WAM's model instance.
         position_tolerance: allowed palm position error, m.
         angle_tolerance: allowed palm orientation error, rad.
+        table_z: the table top's height, m (the station's is the world's z = 0 plane:
+            models/wam_barrett.dmd.yaml).
     """
 
     plant: MultibodyPlant
     wam: ModelInstanceIndex
     position_tolerance: float = 1e-3
     angle_tolerance: float = np.radians(1.0)
+    table_z: float = 0.0
 
     def __post_init__(self):
         self._palm = self.plant.GetFrameByName(HAND_JOINTS.palm_frame)
         self._context = self.plant.CreateDefaultContext()
         q = np.arange(self.plant.num_positions())
         self._arm_rows = self.plant.GetPositionsFromArray(self.wam, q).astype(int)
+        # The arm's shell as spheres in its links' frames: each joint (the previous D-H origin) with
+        # the link's radius, and the middle of each link with 0.8 of it (modelgen's visual shell).
+        self._shell = []
+        for i in range(2, arm.NUM_JOINTS + 1):
+            body = self.plant.GetBodyByName(f"wam_link_{i}", self.wam)
+            X_prev_i = self.plant.GetFrameByName(f"wam_link_{i - 1}", self.wam).CalcPose(
+                self._context, body.body_frame())  # at q = 0: where link i's joint is, in link i
+            p_joint = X_prev_i.translation()
+            self._shell += [(body.body_frame(), p_joint, arm.link_radius(i)),
+                            (body.body_frame(), p_joint / 2, 0.8 * arm.link_radius(i))]
+        self._hand_base = self.plant.GetFrameByName(HAND_JOINTS.base_frame)
+
+    def lowest_point(self, q_arm: np.ndarray) -> tuple[float, str]:
+        """The lowest point of the arm's shell and of the hand base's housing (a cylinder of the
+        palm's radius and height) at arm joint angles q_arm: (its height, m; which part)."""
+        self.plant.SetPositions(self._context, self.wam, q_arm)
+        lowest = (np.inf, "")
+        for frame, p_L, radius in self._shell:
+            z = (frame.CalcPoseInWorld(self._context) @ p_L)[2] - radius
+            lowest = min(lowest, (float(z), frame.body().name()))
+        X_WH = self._hand_base.CalcPoseInWorld(self._context)
+        axis = X_WH.rotation().col(2)
+        centre = X_WH @ np.array([0.0, 0.0, hand.PALM_HEIGHT / 2])
+        z = centre[2] - hand.PALM_HEIGHT / 2 * abs(axis[2]) - hand.BASE_RADIUS * np.sqrt(max(0.0, 1 - axis[2] ** 2))
+        return min(lowest, (float(z), "hand base"))
+
+    def check_table_clearance(self, q_path) -> None:
+        """Raises ReachError if the arm's shell or the hand base comes within TABLE_MARGIN of the
+        table anywhere along q_path (joint angles, each 7)."""
+        for q in q_path:
+            z, part = self.lowest_point(q)
+            if z < self.table_z + TABLE_MARGIN:
+                p = self.palm_pose(q).translation()
+                raise ReachError(f"the arm would strike the table ({part} {1000 * (z - self.table_z):.0f} mm from it) "
+                                 f"with the palm at ({p[0]:.3f}, {p[1]:.3f}, {p[2]:.3f}) m")
 
     def palm_pose(self, q_arm: np.ndarray) -> RigidTransform:
         """Forward kinematics: X_WP at arm joint angles q_arm."""

@@ -155,12 +155,14 @@ class GraspExecutor(LeafSystem):
 
         The whole path must be reachable: the pre-grasp pose, the straight approach to the target and
         a lift straight up from the target by the protocol's lift height (the lift itself is planned
-        again from where the approach stops)."""
+        again from where the approach stops), with the arm's shell and the hand base clear of the
+        table (`ArmKinematics.check_table_clearance`)."""
         q_pregrasp = self._kinematics.solve(plan.X_WP_pregrasp, q_start)
         approach_path = self._kinematics.straight_line(plan.X_WP_pregrasp, plan.X_WP_target, q_pregrasp, step=0.01)
         X_up = RigidTransform(plan.X_WP_target.rotation(),
                               plan.X_WP_target.translation() + [0.0, 0.0, self._times.lift_height])
-        self._kinematics.straight_line(plan.X_WP_target, X_up, approach_path[-1], step=0.02)
+        lift_path = self._kinematics.straight_line(plan.X_WP_target, X_up, approach_path[-1], step=0.02)
+        self._kinematics.check_table_clearance([q_pregrasp, *approach_path, *lift_path])
         move_time = max(1.0, float(np.max(np.abs(q_pregrasp - q_start))) / self._times.joint_speed)
         return GraspMotion(plan, q_pregrasp, approach_path, move_time, plan.approach_distance / self._times.approach_speed)
 

@@ -38,6 +38,13 @@ EFFORT_LIMITS = np.array([60.0, 60.0, 45.0, 30.0, 10.0, 10.0, 10.0])
 LINK_MASSES = (10.77, 3.87, 1.80, 2.17, 0.357, 0.409, 0.075)
 BASE_MASS = 9.97  # the base casing; it is welded to the world, so it never matters dynamically.
 
+# Radius of the shell around each link's joint (i = 1..7), m: the model's visual cylinders (modelgen)
+# and the arm's clearance from the table (control.arm_motion). Assumed, to match the WAM's look: the
+# shoulder and upper arm are about 12 cm across, the wrist about 8 cm.
+def link_radius(i: int) -> float:
+    return 0.06 if i <= 4 else 0.04
+
+
 HOME = np.array([0.0, -2.0, 0.0, 3.13, 0.0, 0.0, 0.0])
 
 # The hand mounts on the J7 flange rotated by pi about the flange's z axis (docs/design.md §4.2).

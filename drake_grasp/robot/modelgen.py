@@ -310,7 +310,7 @@ def wam_sdf() -> str:
         p_i_prev = X_prev_i.inverse().translation()
         length = float(np.linalg.norm(p_i_prev))
         X_LCom = RigidTransform(p_i_prev / 2)
-        radius = 0.06 if i <= 4 else 0.04
+        radius = arm.link_radius(i)
         inertia = 0.4 * mass * radius**2 + mass * length**2 / 12
         parts.append(
             f'<link name="{link}">{_pose(X_prev_i, parent_frame)}'
