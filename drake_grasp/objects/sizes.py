@@ -5,7 +5,7 @@ Why: a file in millimetres read as metres is a 100 m object; it used to draw a w
 whole trial that ended in "simulation diverged" with exit code 0. The range comes from the robot:
 
 * the largest extent of a graspable object is at most GRASPABLE_EXTENTS[1] = 0.5 m. The open hand
-  spans at most :func:`hand_span` (0.36 m between the fingertips of F1 and F2 spread apart, from
+  spans at most :func:`hand_span` (0.37 m between the fingertips of F1 and F2 spread apart, from
   the D-H table in ``robot/hand.py``), so every grasp closes across a dimension of the object below
   that; and the exploration's first view (the wrist camera 0.45 m above the table, 60° vertical
   field of view) sees 0.52 m of the table across, so a longer object is not seen whole. 0.5 m
@@ -45,12 +45,13 @@ _DIRECTIONS = 400
 
 @functools.lru_cache(maxsize=1)
 def hand_span() -> float:
-    """The widest opening of the open hand, m: fingertip to fingertip (D-H tip frames) of F1 and F2
-    spread apart (spread 90°), or of F1 and F3 (spread 0), proximal joints at 0."""
-    from drake_grasp.robot.hand import A3, distal_points_in_base
+    """The widest opening of the open hand, m: fingertip to fingertip (the rounded tips' farthest
+    points, `hand.DISTAL_TIP_REACH`) of F1 and F2 spread apart (spread 90°), or of F1 and F3 (spread
+    0), proximal joints at 0."""
+    from drake_grasp.robot.hand import DISTAL_NOSE_CENTRE_Y, DISTAL_TIP_REACH, distal_points_in_base
 
     def tip(finger, spread):
-        return distal_points_in_base(finger, spread, 0.0, 0.0, [[A3, 0.0, 0.0]])[0]
+        return distal_points_in_base(finger, spread, 0.0, 0.0, [[DISTAL_TIP_REACH, DISTAL_NOSE_CENTRE_Y, 0.0]])[0]
 
     return float(max(np.linalg.norm(tip(1, math.pi / 2) - tip(2, math.pi / 2)),
                      np.linalg.norm(tip(1, 0.0) - tip(3, 0.0))))
