@@ -64,8 +64,8 @@ class ArmKinematics:
             X_prev_i = self.plant.GetFrameByName(f"wam_link_{i - 1}", self.wam).CalcPose(
                 self._context, body.body_frame())  # at q = 0: where link i's joint is, in link i
             p_joint = X_prev_i.translation()
-            self._shell += [(body.body_frame(), p_joint, arm.link_radius(i)),
-                            (body.body_frame(), p_joint / 2, 0.8 * arm.link_radius(i))]
+            self._shell.append((body.body_frame(), np.array([p_joint, p_joint / 2]),
+                                np.array([1.0, 0.8]) * arm.link_radius(i)))
         self._hand_base = self.plant.GetFrameByName(HAND_JOINTS.base_frame)
 
     def lowest_point(self, q_arm: np.ndarray) -> tuple[float, str]:
@@ -73,9 +73,9 @@ class ArmKinematics:
         palm's radius and height) at arm joint angles q_arm: (its height, m; which part)."""
         self.plant.SetPositions(self._context, self.wam, q_arm)
         lowest = (np.inf, "")
-        for frame, p_L, radius in self._shell:
-            z = (frame.CalcPoseInWorld(self._context) @ p_L)[2] - radius
-            lowest = min(lowest, (float(z), frame.body().name()))
+        for frame, points_L, radii in self._shell:  # one pose per link
+            z = (frame.CalcPoseInWorld(self._context) @ points_L.T)[2] - radii
+            lowest = min(lowest, (float(z.min()), frame.body().name()))
         X_WH = self._hand_base.CalcPoseInWorld(self._context)
         axis = X_WH.rotation().col(2)
         centre = X_WH @ np.array([0.0, 0.0, hand.PALM_HEIGHT / 2])

@@ -70,7 +70,7 @@ class TrialRecord:
         slip = (f"slip {self.slip_distance * 1000:.1f} mm / {math.degrees(self.slip_angle):.1f} deg"
                 if math.isfinite(self.slip_distance) else "no hold")
         lift = f"lift {self.lift * 100:.1f} cm" if math.isfinite(self.lift) else "no lift"
-        estimator = self.estimate.get("estimator") if isinstance(self.estimate, dict) else None
+        estimator = self.estimate.get("estimator")
         seen = f" ({estimator} estimate)" if estimator else ""
         return (f"{self.object} {self.method}/{self.grasp}{seen} seed {self.seed}: {verdict}; {lift}; {slip}; "
                 f"touching [{self.contacts_at_end or self.contacts_after_close}]; "
