@@ -72,6 +72,9 @@ class ObjectPlacement:
             (same shape, same centre of mass: a denser or lighter body), e.g. 0.5 or 2.0 in the
             sensitivity sweep. Omitted (None) = 1, the object's own mass; None is left out of the
             scenario's YAML dump, so scenarios without it keep their fingerprints.
+        pose: the object's whole pose [x, y, z (m), roll, pitch, yaw (rad)] in the world, instead of its
+            resting pose at (x, y, yaw_deg): where a grasp's next attempt finds the object the last one
+            left (`trial.attempts`). None (left out of the dump): the resting pose.
     """
 
     name: str = "soccer_ball"
@@ -79,6 +82,7 @@ class ObjectPlacement:
     y: float = 0.0
     yaw_deg: float = 0.0
     mass_scale: typing.Optional[float] = None
+    pose: typing.Optional[list[float]] = None
 
 
 @dataclasses.dataclass
@@ -108,11 +112,12 @@ class Scenario:
 DEFAULT_SCENARIO_FILE = DIAGRAMS_DIR / "station.scenarios.yaml"
 
 # The scenario of the paper's algorithm (its visual primitives: the object's silhouettes), which the
-# paper's experiments (`reproduce`, fig4, fig6, fig7, capture) keep; and that of the best estimate the
-# project has (the table-top estimate: a column solid over the exploration's depth views, which also
-# measures the table and the flat resemblance; docs/results/estimates.md).
+# paper's experiments (`reproduce`, fig4, fig6, fig7, capture) keep; and the best the project has for a
+# user's object: the table-top estimate (a column solid over the exploration's depth views, which also
+# measures the table and the flat resemblance; docs/results/estimates.md) with the funnel search on the
+# shape it saw (docs/design.md §5.4e).
 PAPER_SCENARIO_NAME = "default"
-BEST_SCENARIO_NAME = "table_top"
+BEST_SCENARIO_NAME = "funnel"
 
 
 def default_scenario_name(object_name: str, scenario_file: str | pathlib.Path | None = None) -> str:
@@ -178,6 +183,8 @@ def validate_scenario(scenario: Scenario) -> None:
             raise ValueError(f"object.{name} must be a finite number, got {getattr(placement, name)}")
     if placement.mass_scale is not None and not (math.isfinite(placement.mass_scale) and placement.mass_scale > 0):
         raise ValueError(f"object.mass_scale must be a finite number > 0, got {placement.mass_scale}")
+    if placement.pose is not None and (len(placement.pose) != 6 or not all(math.isfinite(v) for v in placement.pose)):
+        raise ValueError(f"object.pose must be 6 finite numbers [x, y, z, roll, pitch, yaw], got {placement.pose}")
     if len(scenario.arm.kp) != arm.NUM_JOINTS or len(scenario.arm.kd) != arm.NUM_JOINTS:
         raise ValueError(f"arm.kp and arm.kd need {arm.NUM_JOINTS} gains each")
     contact = scenario.contact
@@ -212,7 +219,9 @@ class Station:
 
 
 def object_rest_pose(spec: ObjectSpec, placement: ObjectPlacement) -> RigidTransform:
-    """Pose X_WO of an object resting on the table (top at z = 0) at the placement."""
+    """Pose X_WO of an object resting on the table (top at z = 0) at the placement (or its whole `pose`)."""
+    if placement.pose is not None:
+        return RigidTransform(RollPitchYaw(*placement.pose[3:6]), placement.pose[0:3])
     R_WO = RollPitchYaw(0, 0, math.radians(placement.yaw_deg)).ToRotationMatrix() @ spec.R_TO
     return RigidTransform(R_WO, [placement.x, placement.y, spec.rest_height])
 

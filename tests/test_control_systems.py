@@ -183,7 +183,7 @@ def test_the_executor_runs_the_grasp_itself_when_reachable_and_names_every_turn_
                              q_start, scenario.protocol.execution)
     plan = plan_compliant_grasp("spherical", oracle_estimate(station.X_WO_nominal(), station.object_spec))
     motion = executor.plan_reachable_motion(plan, q_start)
-    assert motion.turn == 0.0 and motion.plan == plan and motion.unreachable == ""
+    assert motion.fallback == "" and motion.plan == plan and motion.unreachable == ""
     far = type(plan)(plan.grasp, plan.spread, RigidTransform(plan.X_WP_target.rotation(), [2.0, 0.0, 0.3]))
     with pytest.raises(ReachError, match=r"nor the grasp turned -120°, \+120° about the approach"):
         executor.plan_reachable_motion(far, q_start)

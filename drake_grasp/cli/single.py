@@ -56,6 +56,11 @@ def add_trial(sub) -> None:
                        "fingertips closing along the table, for thin, flat and small objects)")
     trial.add_argument("--oracle", action="store_true",
                        help="skip the camera: compute the grasp (--grasp) from the object's true pose and size")
+    trial.add_argument("--attempts", type=int, default=1, metavar="N",
+                       help="try again up to N times in all (default 1, the paper's protocol): when the wrist "
+                       "camera sees the object did not rise with the hand, the hand opens, the camera looks "
+                       "again and the next grasp of the decision is executed; the record lists every attempt "
+                       "(--method compliant, the algorithm's own choice)")
     trial.add_argument("--estimate-error", metavar="KEY=VALUE,...",
                        help="add a known error to the estimate the grasp is computed from: along, across "
                        "(m, horizontal, along and across the object's principal axis), yaw_deg (deg), size "
@@ -135,6 +140,13 @@ def _run_demo(args) -> int:
 def _run_trial(args) -> int:
     from drake_grasp import trial
 
+    from drake_grasp.trial.spec import MAX_ATTEMPTS
+
+    if not 1 <= args.attempts <= MAX_ATTEMPTS:
+        raise UsageError(f"--attempts must be from 1 to {MAX_ATTEMPTS}, got {args.attempts}")
+    if args.attempts > 1 and (args.method != "compliant" or args.grasp or args.oracle):
+        raise UsageError("--attempts: only the compliance-centric algorithm's own choice tries again "
+                         "(no --grasp, --oracle or --method eigengrasp)")
     replay, scenario, obj = single_run_inputs(args)
     error = _estimate_error_arg(args.estimate_error)
     options = dict(scenario_file=args.scenario or "", scenario_name=args.scenario_name, scale=args.scale,
@@ -152,7 +164,7 @@ def _run_trial(args) -> int:
         if args.oracle and args.grasp is None:
             raise UsageError("--oracle needs --grasp (the oracle does not choose)")
         spec = trial.TrialSpec(args.object, "oracle" if args.oracle else "compliant", args.grasp or "", args.seed,
-                               **options)
+                               attempts=args.attempts, **options)
     record = trial.run(spec, str(replay) if replay else None, scenario=scenario, obj=obj)
     summary = record.summary()
     if record.planned_grasp is not None:

@@ -55,8 +55,8 @@ class GraspMotion:
     approach_path: list
     move_time: float
     approach_duration: float
-    turn: float = 0.0  # the near-symmetric turn about the approach that `plan` is of the requested one, rad
-    unreachable: str = ""  # why the requested pose (and any smaller turn) could not be reached
+    fallback: str = ""  # what `plan` is instead of the requested one when that was out of reach ("": itself)
+    unreachable: str = ""  # why the requested pose could not be reached
 
     @property
     def has_preshape(self) -> bool:
@@ -166,32 +166,43 @@ class GraspExecutor(LeafSystem):
         move_time = max(1.0, float(np.max(np.abs(q_pregrasp - q_start))) / self._times.joint_speed)
         return GraspMotion(plan, q_pregrasp, approach_path, move_time, plan.approach_distance / self._times.approach_speed)
 
-    def plan_reachable_motion(self, plan: GraspPlan, q_start: np.ndarray) -> GraspMotion:
-        """The motion of `plan`, or, when the arm cannot reach its whole path, of the nearest of its
-        grasp's near-symmetric equivalents that it can reach (`grasps.near_symmetric_plans`: the
-        same grasp turned about the approach, the smallest turn first).
+    def plan_reachable_motion(self, plan: GraspPlan, q_start: np.ndarray,
+                              alternatives: list[tuple[str, GraspPlan]] | None = None) -> GraspMotion:
+        """The motion of `plan`, or, when the arm cannot reach its whole path, of the first of the
+        `alternatives` it can reach.
+
+        Args:
+            alternatives: (what it is, plan) to try after `plan`, in order: the funnel search's next
+                candidates (`funnel.planning`); default: the grasp's near-symmetric equivalents
+                (`grasps.near_symmetric_plans`: the same grasp turned about the approach, the
+                smallest turn first).
 
         Raises:
-            ReachError: none is reachable; its message lists what was tried.
+            ReachError: none is reachable; its message says what was tried.
         """
+        if alternatives is None:
+            alternatives = [(f"the grasp turned {np.degrees(turn):+.0f}° about the approach", p)
+                            for turn, p in near_symmetric_plans(plan)[1:]]
         tried = []
-        for turn, candidate in near_symmetric_plans(plan):
+        for label, candidate in [("", plan)] + list(alternatives):
             try:
                 motion = self.plan_motion(candidate, q_start)
             except ReachError as e:
-                tried.append((turn, str(e)))
+                tried.append((label, str(e)))
                 continue
-            unreachable = tried[0][1] if tried else ""
-            return dataclasses.replace(motion, turn=turn, unreachable=unreachable)
+            return dataclasses.replace(motion, fallback=label, unreachable=tried[0][1] if tried else "")
         if len(tried) == 1:
             raise ReachError(tried[0][1])
-        turns = ", ".join(f"{np.degrees(turn):+.0f}°" for turn, _ in tried[1:])
-        raise ReachError(f"{tried[0][1]}, nor the grasp turned {turns} about the approach")
+        turns = [label.removeprefix("the grasp turned ").removesuffix(" about the approach") for label, _ in tried[1:]]
+        if all(label.startswith("the grasp turned ") for label, _ in tried[1:]):
+            raise ReachError(f"{tried[0][1]}, nor the grasp turned {', '.join(turns)} about the approach")
+        raise ReachError(f"{tried[0][1]}, nor any of {len(tried) - 1} other poses ({tried[1][0]}, ...)")
 
-    def _start_grasp(self, progress: _Progress, plan: GraspPlan, q_start: np.ndarray, t: float) -> _Progress:
-        """Plans the motion of `plan` (or of its nearest reachable near-symmetric equivalent) from
-        q_start and enters GraspPhase.MOVE at time t (raises ReachError)."""
-        motion = self.plan_reachable_motion(plan, q_start)
+    def _start_grasp(self, progress: _Progress, plan: GraspPlan, q_start: np.ndarray, t: float,
+                     alternatives: list[tuple[str, GraspPlan]] | None = None) -> _Progress:
+        """Plans the motion of `plan` (or of the first reachable of its alternatives:
+        `plan_reachable_motion`) from q_start and enters GraspPhase.MOVE at time t (raises ReachError)."""
+        motion = self.plan_reachable_motion(plan, q_start, alternatives)
         path = JointPath()
         path.add(t, q_start)
         path.add(t + motion.move_time, motion.q_pregrasp)

@@ -15,7 +15,11 @@ primitives:
 * **decide**: when the exploration ends, the supervisor reads the estimate. The compliant grasp is the
   one of the most resembling shape (`grasps.GRASP_OF_SHAPE`), unless the caller forced one (Fig. 6
   executes all three). Its hand pose is computed from the estimate alone (`grasps.plan_compliant_grasp`):
-  no object model, no ground truth, no contact planning. A study of how far off an estimate may be
+  no object model, no ground truth, no contact planning. With the funnel search (a scenario's
+  `perception.grasp_search`, beyond the paper), each grasp's pose is varied and scored by closing the
+  hand quasi-statically on the shape the depth views saw, a grasp with an empty funnel is not chosen
+  when another has one, and the executed pose is the centre of the widest funnel
+  (`funnel.planning.choose_grasp`). A study of how far off an estimate may be
   (issue 15) gives a known `estimate_error.EstimateError`, added to the estimate before the grasp
   is computed from it (the decision, the grasp of the most resembling shape, is not affected).
 * **approach, close, lift, hold**: the same sequence, controller and timings as every other method
@@ -40,9 +44,12 @@ from drake_grasp.control.arm_motion import UNREACHABLE, ReachError
 from drake_grasp.control.grasp_executor import ConnectGraspExecutor, GraspExecutor, _Progress
 from drake_grasp.estimate_error import EstimateError, perturb_estimate
 from drake_grasp.protocol import ExecutionTimes
-from drake_grasp.grasps import GRASP_OF_SHAPE, GraspPlan, GraspType, plan_compliant_grasp
+from drake_grasp.funnel.params import FunnelParams
+from drake_grasp.funnel.planning import choose_grasp
+from drake_grasp.grasps import GraspPlan, GraspType
 from drake_grasp.primitives.estimate import OBJECT_NOT_FOUND, PERCEPTION_FAILED, ObjectEstimate
 from drake_grasp.primitives.sequencer import phase_value
+from drake_grasp.primitives.table_top import HeightMap
 
 
 @dataclasses.dataclass(frozen=True)
@@ -57,6 +64,10 @@ class Decision:
         executed: the grasp executed: `chosen`, or the one the caller forced.
         plan: the executed grasp's plan, from the estimate with the added error if any (None if the
             object was not found or its estimate cannot place a grasp).
+        paper_choice: the paper's argmax alone ("" as `chosen`); differs from `chosen` where the funnel
+            search vetoed it (`primitives.decision.choose_with_funnels`).
+        grasp_search: the funnel search's summary (`funnel.search.FunnelSearch.summary`), or None
+            without one (the paper's algorithm).
     """
 
     time: float
@@ -64,6 +75,8 @@ class Decision:
     chosen: str
     executed: str
     plan: GraspPlan | None
+    paper_choice: str = ""
+    grasp_search: dict | None = None
 
 
 class CompliantGraspSupervisor(GraspExecutor):
@@ -72,6 +85,8 @@ class CompliantGraspSupervisor(GraspExecutor):
     Input ports (besides GraspExecutor's `wam.state` and `contact_results`):
         exploration_phase (1): the ExplorationSequencer's phase.
         object_estimate: the ObjectEstimator's estimate (abstract).
+        height_map: the depth views' `table_top.HeightMap` (abstract; connected with the table-top
+            estimate): the shape the funnel search closes the hand on. Unconnected: no search.
     Output ports (besides GraspExecutor's):
         arm_source: the InputPortIndex of the arm switch's port that drives the WAM: the camera
             motion while exploring (and after a sequence that ended without a grasp), the
@@ -83,7 +98,8 @@ class CompliantGraspSupervisor(GraspExecutor):
 
     def __init__(self, plant, scene_graph, wam, hand_bodies: list, q_start: np.ndarray, times: ExecutionTimes,
                  arm_sources: tuple[InputPortIndex, InputPortIndex], forced_grasp: str | None = None,
-                 estimate_error: EstimateError | None = None):
+                 estimate_error: EstimateError | None = None, grasp_search: FunnelParams | None = None,
+                 exclude: tuple = ()):
         """
         Args:
             plant, scene_graph, wam, hand_bodies, times: as GraspExecutor's.
@@ -92,13 +108,20 @@ class CompliantGraspSupervisor(GraspExecutor):
             forced_grasp: execute this grasp instead of the most resembling shape's (Fig. 6); the
                 default of the context's `forced_grasp` parameter (`set_forced_grasp`).
             estimate_error: a known error added to the estimate before the grasp is computed from it.
+            grasp_search: the funnel search's choices (`funnel.search`; it reads `height_map`); None:
+                each grasp at its primitive's pose, as the paper.
+            exclude: grasps that already failed on this object (a later attempt: `trial.attempts`).
         """
         self._estimate_error = estimate_error
+        self._exclude = tuple(exclude)
+        self._grasp_search = grasp_search
         self._arm_sources = arm_sources
         super().__init__(plant, scene_graph, wam, hand_bodies, None, q_start, times)
         self._phase_port = self.DeclareVectorInputPort("exploration_phase", 1)
         self._estimate_port = self.DeclareAbstractInputPort(
             "object_estimate", AbstractValue.Make(ObjectEstimate(status=OBJECT_NOT_FOUND)))
+        self._height_map_port = self.DeclareAbstractInputPort(
+            "height_map", AbstractValue.Make(HeightMap(np.zeros(2), 0.003, np.full((1, 1), np.nan))))
         # The grasp to execute instead of the chosen one ("": the chosen one). A parameter, not a
         # constant of the system, so that one exploration can be continued with each grasp from a
         # clone of its context (`trial.execution.execute_branches`).
@@ -140,13 +163,14 @@ class CompliantGraspSupervisor(GraspExecutor):
             not_found = estimate.status == OBJECT_NOT_FOUND
             outcome, detail = (OBJECT_NOT_FOUND, "") if not_found else (PERCEPTION_FAILED, problem)
             return dataclasses.replace(self._end(progress, t, outcome, detail), decision=decision)
-        chosen = GRASP_OF_SHAPE[estimate.best_shape]
-        executed = forced or chosen
-        plan = plan_compliant_grasp(executed, perturb_estimate(estimate.as_grasp_estimate(), self._estimate_error))
-        decision = Decision(t, estimate, chosen, executed, plan)
+        height_map = self._height_map_port.Eval(context) if self._height_map_port.HasValue(context) else None
+        choice = choose_grasp(estimate, perturb_estimate(estimate.as_grasp_estimate(), self._estimate_error), forced,
+                              self._grasp_search, height_map, self._exclude)
+        decision = Decision(t, estimate, choice.chosen, choice.executed, choice.plan, choice.paper_choice,
+                            None if choice.search is None else choice.search.summary())
         q_now = np.asarray(self._wam_state_port.Eval(context), float)[:7]
         try:
-            started = self._start_grasp(progress, plan, q_now, t)
+            started = self._start_grasp(progress, choice.plan, q_now, t, choice.alternatives)
         except ReachError as e:
             return dataclasses.replace(self._end(progress, t, UNREACHABLE, str(e)), decision=decision)
         return dataclasses.replace(started, decision=decision)
@@ -159,7 +183,9 @@ def _grasp_name(grasp: str | None) -> str:
 
 def AddCompliantGraspSupervisor(builder: DiagramBuilder, station, primitives, sequencer,
                                 q_start: np.ndarray, times: ExecutionTimes, forced_grasp: str | None = None,
-                                estimate_error: EstimateError | None = None) -> CompliantGraspSupervisor:
+                                estimate_error: EstimateError | None = None,
+                                grasp_search: FunnelParams | None = None, exclude: tuple = ()
+                                ) -> CompliantGraspSupervisor:
     """Adds the supervisor and the arm switch, and connects them to the station, the primitives'
     estimator, the sequencer and the camera motion controller.
 
@@ -173,6 +199,8 @@ def AddCompliantGraspSupervisor(builder: DiagramBuilder, station, primitives, se
         times: the grasp sequence's timings (the scenario's protocol.execution).
         forced_grasp: execute this grasp instead of the chosen one.
         estimate_error: a known error added to the estimate before the grasp is computed from it.
+        grasp_search: the funnel search's choices (the scenario's `perception.grasp_search`).
+        exclude: grasps that already failed on this object (a later attempt).
     """
     station_system = station.diagram
     switch = builder.AddNamedSystem("arm_command_switch", PortSwitch(14))
@@ -181,7 +209,7 @@ def AddCompliantGraspSupervisor(builder: DiagramBuilder, station, primitives, se
     plant = station.plant
     supervisor = builder.AddNamedSystem("supervisor", CompliantGraspSupervisor(
         plant, station.scene_graph, station.wam, plant.GetBodyIndices(station.hand), q_start, times,
-        (camera_port.get_index(), grasp_port.get_index()), forced_grasp, estimate_error))
+        (camera_port.get_index(), grasp_port.get_index()), forced_grasp, estimate_error, grasp_search, exclude))
     builder.Connect(primitives.camera_motion.GetOutputPort("wam.desired_state"), camera_port)
     builder.Connect(supervisor.GetOutputPort("wam.desired_state"), grasp_port)
     builder.Connect(supervisor.GetOutputPort("arm_source"), switch.get_port_selector_input_port())
@@ -189,5 +217,7 @@ def AddCompliantGraspSupervisor(builder: DiagramBuilder, station, primitives, se
     builder.Connect(switch.get_output_port(), station_system.GetInputPort("wam.desired_state"))
     builder.Connect(sequencer.GetOutputPort("phase"), supervisor.GetInputPort("exploration_phase"))
     builder.Connect(primitives.estimator.GetOutputPort("estimate"), supervisor.GetInputPort("object_estimate"))
+    if primitives.depth_views is not None:
+        builder.Connect(primitives.depth_views.GetOutputPort("height_map"), supervisor.GetInputPort("height_map"))
     ConnectGraspExecutor(builder, station_system, supervisor, arm=False)
     return supervisor

@@ -11,6 +11,7 @@ import math
 import typing
 
 from drake_grasp.control.camera_motion import CameraMotionParams
+from drake_grasp.funnel.params import FunnelParams
 from drake_grasp.primitives.camera import SegmentationParams
 from drake_grasp.primitives.depth import DepthParams
 from drake_grasp.primitives.principal_axis import PrincipalAxisParams
@@ -40,6 +41,9 @@ class PerceptionConfig:
     # The table-top estimate from depth views (primitives.table_top); None: the silhouettes' estimate
     # alone, as in the paper. None is left out of the scenario's YAML dump (fingerprints unchanged).
     table_top: typing.Optional[TableTopParams] = None
+    # The funnel search on the shape the depth views saw (funnel.search); None: each grasp at its
+    # primitive's pose, as in the paper. It needs the table-top estimate's height map.
+    grasp_search: typing.Optional[FunnelParams] = None
 
     @property
     def period(self) -> float:
@@ -59,6 +63,11 @@ class PerceptionConfig:
                              "(perception.table_top): its confirming arc turns about the depth views' centre and axis")
         for shape in SHAPES:
             getattr(self, shape).validate()
+        if self.grasp_search is not None:
+            if self.table_top is None:
+                raise ValueError("grasp_search (the funnel search) needs the table-top estimate (perception.table_top): "
+                                 "it closes the hand on the shape its depth views saw")
+            self.grasp_search.validate()
         if self.table_top is not None:
             self.table_top.validate()
             ratio = self.table_top.view_period * self.rate_hz

@@ -10,7 +10,12 @@ known table), so it decides first:
 
 1. **flat** when the flat resemblance is at least `FLAT_THRESHOLD` (1/2: the object is thinner than
    2.5 cm or smaller than 7 cm, the middle of its logistic steps);
-2. otherwise the paper's argmax over sphere, cylinder and box.
+2. otherwise the paper's argmax over sphere, cylinder and box;
+3. with the funnel search (`funnel.search`, a scenario's `perception.grasp_search`): a grasp whose
+   funnel on the shape the camera saw is empty (ε = 0 at every pose scored) is not chosen when another's
+   is not; the most resembling of those with a funnel is (`choose_with_funnels`). The paper's argmax
+   stands whenever its grasp has a funnel, or no grasp has one. Step 1 keeps precedence: a plate gives
+   ε = 0 to every grasp quasi-statically, so no funnel vetoes the flat choice.
 
 The *margin* says how clear the decision was, in [0, 1]: in step 2, the lead of the best resemblance
 over the next; a flat resemblance near its threshold makes any decision close, so its own distance
@@ -32,15 +37,19 @@ def _value(resemblances: dict, shape: str) -> float:
     return math.nan if value is None else float(value)
 
 
-def choose_shape(resemblances: dict) -> str | None:
+def choose_shape(resemblances: dict, exclude=()) -> str | None:
     """The chosen shape (one of `CHOICES`) for resemblances {shape: value in [0, 1]}, or None when there
-    are none. A missing or NaN flat resemblance leaves the paper's argmax."""
+    are none. A missing or NaN flat resemblance leaves the paper's argmax.
+
+    `exclude`: shapes whose grasp already failed on this object (a later attempt, `trial.attempts`):
+    the rule runs without them, unless that leaves none of the paper's three."""
     if not resemblances:
         return None
     flat = _value(resemblances, FLAT)
-    if math.isfinite(flat) and flat >= FLAT_THRESHOLD:
+    if FLAT not in exclude and math.isfinite(flat) and flat >= FLAT_THRESHOLD:
         return FLAT
-    return max(SHAPES, key=lambda s: resemblances.get(s, -1.0))
+    shapes = [s for s in SHAPES if s not in exclude] or list(SHAPES)
+    return max(shapes, key=lambda s: resemblances.get(s, -1.0))
 
 
 def decision_margin(resemblances: dict) -> float:
@@ -56,3 +65,20 @@ def decision_margin(resemblances: dict) -> float:
         return math.nan
     flat_margin = 2.0 * abs(flat - FLAT_THRESHOLD)
     return flat_margin if flat >= FLAT_THRESHOLD else min(lead, flat_margin)
+
+
+def choose_with_funnels(resemblances: dict, empty: dict, exclude=()) -> str | None:
+    """The chosen shape with the funnel search's veto (module docstring, step 3).
+
+    Args:
+        resemblances: {shape: value in [0, 1]}.
+        empty: {shape: whether its grasp's funnel on the observed shape is empty}, for the shapes searched.
+        exclude: as `choose_shape`'s.
+    """
+    chosen = choose_shape(resemblances, exclude)
+    if chosen is None or chosen == FLAT or not empty.get(chosen, False):
+        return chosen
+    open_shapes = [s for s in SHAPES if s in empty and not empty[s] and s not in exclude]
+    if not open_shapes:
+        return chosen
+    return max(open_shapes, key=lambda s: resemblances.get(s, -1.0))

@@ -79,6 +79,8 @@ class DepthViews(LeafSystem):
         active (1): 0 stops the views (the exploration is over); unconnected, always active.
     Output ports:
         table_top (26): `TableTopVector`, computed from the state (only when a view changed it).
+        height_map (abstract `table_top.HeightMap`): both halves' views together (the funnel search
+            closes the hand on its column solid: `funnel.observed_shape`).
     """
 
     # The state's head: [origin set (1/0), origin x, origin y, views, clipped]; the two maps follow.
@@ -101,6 +103,9 @@ class DepthViews(LeafSystem):
         self._state = self.DeclareDiscreteState(initial)
         self.DeclareVectorOutputPort("table_top", TableTopVector.SIZE, self._CalcTableTop,
                                      {self.discrete_state_ticket(self._state)})
+        self.DeclareAbstractOutputPort(
+            "height_map", lambda: AbstractValue.Make(table_top.HeightMap.around((0.0, 0.0), params.cell, n)),
+            self._CalcHeightMap, {self.discrete_state_ticket(self._state)})
         self.DeclarePeriodicDiscreteUpdateEvent(params.view_period, 0.0, self._View)
 
     def image_input_port(self):
@@ -143,6 +148,10 @@ class DepthViews(LeafSystem):
         state[3] += 1.0
         state[4] = float(height_map.clipped or state[4] > 0.5)
         discrete_state.get_mutable_vector(self._state).SetFromVector(state)
+
+    def _CalcHeightMap(self, context: Context, output: AbstractValue) -> None:
+        first, second = self.maps(context.get_discrete_state(self._state).get_value())
+        output.set_value(first.merged(second))
 
     def _CalcTableTop(self, context: Context, output) -> None:
         state = context.get_discrete_state(self._state).get_value()

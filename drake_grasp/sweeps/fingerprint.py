@@ -108,8 +108,8 @@ def scenario_fingerprint(scenario_file: str = "", scenario_name: str = "default"
 def trial_fingerprint(spec, scenario_print: str | None = None, object_print: str | None = None) -> str:
     """The fingerprint of one trial (`trial.TrialSpec`): scenario and perception, object content,
     the planned grasp (planner trials) and the behaviour version; and, only where a spec has them (so
-    that every other record keeps its fingerprint), an estimate error and the settings of a planner
-    trial that plans itself. The method, grasp and seed are the record's key and not repeated here.
+    that every other record keeps its fingerprint), an estimate error, more than one attempt and the
+    settings of a planner trial that plans itself. The method, grasp and seed are the record's key and not repeated here.
     Precomputed scenario and object fingerprints may be given."""
     if scenario_print is None:
         scenario_print = scenario_fingerprint(spec.scenario_file, spec.scenario_name)
@@ -118,6 +118,8 @@ def trial_fingerprint(spec, scenario_print: str | None = None, object_print: str
     parts = ["trial", drake_grasp.BEHAVIOUR_VERSION, scenario_print, object_print, spec.planned]
     if spec.has_estimate_error:
         parts.append({"estimate_error": spec.estimate_error})
+    if spec.attempts > 1:
+        parts.append({"attempts": spec.attempts})
     if spec.method == "eigengrasp" and spec.planned is None:
         from drake_grasp.trial.spec import PlannerSettings
 

@@ -128,7 +128,8 @@ def _extra(spec: TrialSpec, record, scenario, obj) -> dict:
                 "margin": (record.estimate or {}).get("resemblance_margin"),
                 "estimate_errors": record.estimate_errors, "scenario": spec.scenario_name,
                 "segmentation": scenario.perception.segmentation.method,
-                "exploration": (record.estimate or {}).get("exploration")}
+                "exploration": (record.estimate or {}).get("exploration"), "grasp_search": record.grasp_search,
+                "sensed": record.sensed, "attempts": record.attempts}
     if spec.method == "oracle":
         return {"truth_class": obj.closest_primitive}
     return dict(record.planned_grasp or {})  # eigengrasp: the planned grasp executed

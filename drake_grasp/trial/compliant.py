@@ -15,6 +15,7 @@ from drake_grasp.perception.wiring import (AddExplorationSequencer, AddVisualPri
 from drake_grasp.station import Scenario
 from drake_grasp.trial.assembly import Assembled, Wiring, assemble_and_run_branches
 from drake_grasp.trial.record import TrialRecord
+from drake_grasp.trial.sensing import sense_hold
 
 
 def run_compliant_trial(scenario: Scenario, spec: ObjectSpec, *, seed: int, grasp: str | None = None,
@@ -46,6 +47,18 @@ def run_compliant_trials(scenario: Scenario, spec: ObjectSpec, *, seed: int, gra
     so they are simulated once, and each grasp goes on from a copy of the state at the decision
     (`assembly.assemble_and_run_branches`). The records are those of the trials run one by one
     (wall time aside: each gets its share of the exploration's)."""
+    lift = scenario.protocol.execution.lift_height
+    return [_compliant_record(trial, lift) for trial in run_compliant_branches(
+        scenario, spec, seed=seed, grasps=grasps, replay_html=replay_html, perception_config=perception_config,
+        monitor_period=monitor_period, estimate_error=estimate_error)]
+
+
+def run_compliant_branches(scenario: Scenario, spec: ObjectSpec, *, seed: int, grasps: list[str | None],
+                           replay_html: str | None = None, perception_config=None, monitor_period: float = 0.05,
+                           estimate_error: EstimateError | None = None, exclude: tuple = ()) -> list[Assembled]:
+    """The trials of `run_compliant_trials` as run (`assembly.Assembled`: each record, and what its
+    simulation saw), for callers that go on from where a trial left the object (`trial.attempts`).
+    `exclude`: grasps that already failed on this object, which the decision runs without."""
     config = perception_config or scenario.perception
     nominal = np.array([scenario.object.x, scenario.object.y, 0.0])  # where the object is expected
 
@@ -56,7 +69,8 @@ def run_compliant_trials(scenario: Scenario, spec: ObjectSpec, *, seed: int, gra
         sequencer = AddExplorationSequencer(builder, primitives, config)
         q_start = start_configuration(station, start_camera_pose(nominal, config, config.depth.table_height), config)
         supervisor = AddCompliantGraspSupervisor(builder, station, primitives, sequencer, q_start,
-                                                 protocol.execution, grasps[0], estimate_error)
+                                                 protocol.execution, grasps[0], estimate_error, config.grasp_search,
+                                                 exclude)
 
         def start_camera_motion(context):
             motion = primitives.camera_motion
@@ -70,14 +84,14 @@ def run_compliant_trials(scenario: Scenario, spec: ObjectSpec, *, seed: int, gra
 
     branches = [({"method": "compliant", "grasp": grasp or "", "estimate_source": "camera"}, grasp)
                 for grasp in grasps]
-    trials = assemble_and_run_branches(scenario, spec, seed=seed, branches=branches, camera=True, wire=wire,
-                                       replay_html=replay_html, monitor_period=monitor_period)
-    return [_compliant_record(trial) for trial in trials]
+    return assemble_and_run_branches(scenario, spec, seed=seed, branches=branches, camera=True, wire=wire,
+                                     replay_html=replay_html, monitor_period=monitor_period)
 
 
-def _compliant_record(trial: Assembled) -> TrialRecord:
+def _compliant_record(trial: Assembled, lift_height: float) -> TrialRecord:
     """A camera-driven trial's record, with what the decision saw: the estimate, the resemblances,
-    the chosen grasp and the estimate's errors against the truth at the decision."""
+    the chosen grasp and the estimate's errors against the truth at the decision; and what the wrist
+    camera told of the hold at the end (`sensing.sense_hold`, against the lift height, m)."""
     record, run, spec = trial.record, trial.run, trial.spec
     decision = run.decision
     if decision is not None:
@@ -90,6 +104,12 @@ def _compliant_record(trial: Assembled) -> TrialRecord:
         record.estimate["estimator"] = "table-top" if estimate.table_top is not None else "silhouettes"
         record.estimate["decided_at"] = decision.time
         record.estimate["resemblance_margin"] = estimate.resemblance_margin
+        if decision.grasp_search is not None:  # the funnel search: what it scored, and what it changed
+            record.grasp_search = {**decision.grasp_search, "paper_choice": decision.paper_choice}
+        if run.seen_points is not None and decision.plan is not None:  # what the robot can tell of the hold
+            seen = decision.estimate.as_grasp_estimate()
+            top = float(seen.center[2]) + seen.half_extent_along(np.array([0.0, 0.0, 1.0]))
+            record.sensed = sense_hold(run.seen_points, top, lift_height).to_dict()
         if estimate.found and run.X_WO_decision is not None:
             errors = compare(estimate, ground_truth(spec, run.X_WO_decision))
             record.estimate_errors = {

@@ -23,6 +23,7 @@ from drake_grasp.estimate_error import EstimateError, perturb_estimate
 from drake_grasp.grasps import oracle_estimate, plan_compliant_grasp
 from drake_grasp.objects import ObjectSpec, resolve_user_object
 from drake_grasp.station import DEFAULT_SCENARIO_FILE, Scenario, load_scenario
+from drake_grasp.trial.attempts import run_compliant_attempts
 from drake_grasp.trial.compliant import run_compliant_trial, run_compliant_trials
 from drake_grasp.trial.eigengrasp import run_eigengrasp_trial
 from drake_grasp.trial.given_plan import PlanFunction, run_trial
@@ -70,8 +71,13 @@ def run(spec: TrialSpec, replay_html: str | None = None, *, scenario: Scenario |
     error = spec.estimate_error if spec.has_estimate_error else None
     if spec.method == "compliant":
         # An empty grasp runs the algorithm's own choice; a named one is forced (Fig. 6's protocol).
-        record = run_compliant_trial(scenario, obj, seed=spec.seed, grasp=spec.grasp or None, replay_html=replay_html,
-                                     monitor_period=monitor_period, estimate_error=error)
+        if spec.attempts > 1:
+            record = run_compliant_attempts(scenario, obj, seed=spec.seed, attempts=spec.attempts,
+                                            replay_html=replay_html, monitor_period=monitor_period,
+                                            estimate_error=error)
+        else:
+            record = run_compliant_trial(scenario, obj, seed=spec.seed, grasp=spec.grasp or None,
+                                         replay_html=replay_html, monitor_period=monitor_period, estimate_error=error)
     elif spec.method == "oracle":
         record = run_trial(scenario, obj, oracle_plan(spec.grasp, error), seed=spec.seed, method="oracle",
                            grasp=spec.grasp, replay_html=replay_html, monitor_period=monitor_period)
@@ -116,7 +122,7 @@ def run_shared(specs: list[TrialSpec], *, scenario: Scenario | None = None, obj:
     groups: dict[TrialSpec, list[int]] = {}
     for index, spec in enumerate(specs):
         key = exploration_key(spec)
-        if key is None or any(specs[i].grasp == spec.grasp for i in groups.get(key, [])):
+        if key is None or spec.attempts > 1 or any(specs[i].grasp == spec.grasp for i in groups.get(key, [])):
             records[index] = run(spec, scenario=scenario, obj=obj, monitor_period=monitor_period)
         else:
             groups.setdefault(key, []).append(index)

@@ -54,6 +54,10 @@ class Executed:
     decision: object = None
     X_WO_decision: RigidTransform | None = None
     wall_time: float = 0.0
+    # At the end (stations with the wrist camera): the object's points the camera sees (`trial.sensing`:
+    # what the robot can tell of a hold), and the object's true pose (where a next attempt finds it).
+    seen_points: np.ndarray | None = None
+    X_WO_end: RigidTransform | None = None
 
 
 @dataclasses.dataclass
@@ -241,14 +245,18 @@ class _Watch:
             record.failure, record.detail = progress.outcome, progress.detail
             return run
         contacts_end, on_table = self.touching()
-        p_WO_end = self.object_body.EvalPoseInWorld(plant_context).translation()
+        run.X_WO_end = self.object_body.EvalPoseInWorld(plant_context)
+        if self.station.diagram.HasOutputPort("camera.depth_image"):
+            from drake_grasp.trial.sensing import visible_object_points
+
+            run.seen_points = visible_object_points(self.station, self.context)
+        p_WO_end = run.X_WO_end.translation()
         record.lift = float(p_WO_end[2] - self.X_WO.translation()[2])
         record.contacts_after_close = " ".join(self.contacts_after_close)
         record.contacts_at_end = " ".join(contacts_end)
         record.approach_stopped_on_contact = bool(progress.stopped_on_contact)
-        if progress.motion is not None and progress.motion.turn:  # the grasp's own pose was out of reach
-            record.detail = (f"executed the grasp turned {np.degrees(progress.motion.turn):+.0f}° about the approach: "
-                             f"{progress.motion.unreachable}")
+        if progress.motion is not None and progress.motion.fallback:  # the grasp's own pose was out of reach
+            record.detail = f"executed {progress.motion.fallback}: {progress.motion.unreachable}"
         station = self.station
         q_hand = station.hand_controller.joint_angles(plant.get_state_output_port(station.hand).Eval(plant_context))
         record.finger_angles = [float(q_hand[0])] + [float(a) for a in q_hand[2:8]]

@@ -51,6 +51,15 @@ class TrialRecord:
     chosen_grasp: str = ""
     estimate: dict = dataclasses.field(default_factory=dict)
     estimate_errors: dict = dataclasses.field(default_factory=dict)
+    # With the funnel search (funnel.search): each grasp's ε_mean at its primitive's pose and at the
+    # widest funnel's centre, the pose executed, the paper's own choice, and the search's cost.
+    grasp_search: dict = dataclasses.field(default_factory=dict)
+    # Camera-driven trials: what the wrist camera told of the hold at the end (trial.sensing): the
+    # robot's own verdict, which decides whether it tries again (the success test is the simulator's).
+    sensed: dict = dataclasses.field(default_factory=dict)
+    # With more than one attempt (trial.attempts): each attempt's grasp, outcome and sensed verdict, in
+    # order; the record's own fields are the last attempt's (times summed over all).
+    attempts: list = dataclasses.field(default_factory=list)
     # Planner (eigengrasp) trials: the planned grasp executed, as given or as the planner gave it
     # (None if the arm could reach too few of the planner's grasps).
     planned_grasp: dict | None = None
@@ -72,6 +81,9 @@ class TrialRecord:
         lift = f"lift {self.lift * 100:.1f} cm" if math.isfinite(self.lift) else "no lift"
         estimator = self.estimate.get("estimator")
         seen = f" ({estimator} estimate)" if estimator else ""
+        if len(self.attempts) > 1:
+            tried = ", ".join(f"{a['grasp'] or '-'} {'held' if a['success'] else a['failure']}" for a in self.attempts)
+            verdict = f"{verdict} after {len(self.attempts)} attempts ({tried})"
         return (f"{self.object} {self.method}/{self.grasp}{seen} seed {self.seed}: {verdict}; {lift}; {slip}; "
                 f"touching [{self.contacts_at_end or self.contacts_after_close}]; "
                 f"{self.sim_time:.1f} s simulated in {self.wall_time:.1f} s")

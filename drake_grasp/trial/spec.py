@@ -12,6 +12,7 @@ from drake_grasp.estimate_error import EstimateError
 # The methods a trial can run: a compliant grasp from the ground truth, the compliance-centric
 # algorithm (camera), the Eigengrasp planner's grasp.
 METHODS = ("oracle", "compliant", "eigengrasp")
+MAX_ATTEMPTS = 10  # a grasp's attempts at most (`trial.attempts`)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -61,6 +62,9 @@ class TrialSpec:
             expressed against (X_WH = X_WO_erred X_OH; no size error: the planner has the exact model).
         planner: for "eigengrasp" with no `planned` grasp: plan in the trial with these settings
             (default `PlannerSettings()`).
+        attempts: how often the compliance-centric algorithm may try (`trial.attempts`): 1, the paper's
+            protocol; more: an attempt the wrist camera sees fail is followed by a fresh look and the next
+            candidate.
     """
 
     object: str
@@ -77,8 +81,14 @@ class TrialSpec:
     package_path: tuple[str, ...] = ()
     estimate_error: EstimateError | None = None
     planner: PlannerSettings | None = None
+    attempts: int = 1
 
     def __post_init__(self):
+        if not (isinstance(self.attempts, int) and 1 <= self.attempts <= MAX_ATTEMPTS):
+            raise ValueError(f"attempts must be an integer from 1 to {MAX_ATTEMPTS}, got {self.attempts}")
+        if self.attempts > 1 and (self.method != "compliant" or self.grasp):
+            raise ValueError("attempts: only the compliance-centric algorithm's own choice tries again "
+                             "(method compliant, no grasp named)")
         if self.scenario_name is None:
             from drake_grasp.station import default_scenario_name
 

@@ -1,0 +1,173 @@
+"""The shape the camera saw: the table-top height map's column solid, as convex pieces a grasp can be closed on.
+
+The table-top estimate (`primitives.table_top`) keeps, per 3 mm cell, the highest surface point the
+wrist camera's depth views saw above it; under a resting object there is nothing but the object down
+to the table, as far as a camera above can tell, so the object seen is the union of the columns from
+the table up to that map (the *column solid*). It is what the funnel search closes the hand on
+(`funnel.search`): never the object's file, which a real robot does not have.
+
+For Drake's distance queries the solid must be a union of convex pieces, and few of them: a closing
+asks each hand link's distance to every piece about a hundred times, so the cost of one grasp grows
+with the pieces (about 0.2 ms per piece on one core). The solid is coarsened and cut into strips:
+
+1. *blocks*: square blocks of `factor` × `factor` cells (a block edge of about a twelfth of the
+   object's larger side, at least 6 mm, at most 15 mm); a block is occupied when at least half its
+   cells are, and its height is the mean of theirs (the surface through the block's middle);
+2. *strips*: each row of blocks (along the world's y) is cut where it is empty; each run of occupied
+   blocks is one convex piece, the hull of its columns. The hull fills what dips between the run's
+   two ends (a concavity along y); a gap the camera saw down to the table cuts the run (the hole of a
+   ring, the space inside a handle, seen from above);
+3. *merging*: consecutive rows whose runs span the same blocks at the same heights (within `LEVEL`)
+   are one piece (a box lying on a face is one piece; a 9 cm ball fifteen).
+
+Frame: the observed shape's frame O has the world's axes and its origin at the table-top estimate's
+centre (`table_top.estimate`: the solid's horizontal centroid, vertically between its centroid and
+half its height), which is also the centre of mass the ε metric uses; the torque scale is the largest
+distance from it to the solid's corners (GraspIt!'s "max radius", docs/design.md §4.5).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+from pydrake.math import RigidTransform
+
+from scipy.spatial import ConvexHull
+
+from drake_grasp.objects.spec import ObjectSpec, ShapePiece, _cached_hull_obj
+from drake_grasp.primitives import table_top
+
+LEVEL = 0.002  # m: heights are rounded to this step before columns merge
+MIN_BLOCK, MAX_BLOCK = 0.006, 0.015  # m: the block edge's bounds
+BLOCKS_ACROSS = 12  # blocks along the solid's larger horizontal side (before the bounds)
+DENSITY = 200.0  # kg/m³: for the spec's mass only (the quasi-static hand moves nothing)
+
+
+@dataclasses.dataclass(frozen=True)
+class ObservedShape:
+    """The column solid as convex pieces, world frame (m).
+
+    Attributes:
+        pieces: each piece's corner points (K × 3; the piece is their convex hull).
+        centre: the centre of mass the ε metric uses (module docstring).
+        table_z: the table's height, m.
+        block: the block edge, m.
+    """
+
+    pieces: tuple[np.ndarray, ...]
+    centre: np.ndarray
+    table_z: float
+    block: float
+
+    @property
+    def X_WO(self) -> RigidTransform:
+        """The observed shape's frame O in the world: the world's axes, at `centre`."""
+        return RigidTransform(np.asarray(self.centre, float))
+
+    @property
+    def points(self) -> np.ndarray:
+        return np.vstack(self.pieces)
+
+    @property
+    def max_radius(self) -> float:
+        """Largest distance from `centre` to a piece's corner, m: the ε metric's torque scale."""
+        return float(np.max(np.linalg.norm(self.points - self.centre, axis=1)))
+
+    @property
+    def height(self) -> float:
+        """The solid's top above the table, m."""
+        return float(np.max(self.points[:, 2]) - self.table_z)
+
+    def as_object_spec(self, name: str = "observed") -> ObjectSpec:
+        """The solid as an `ObjectSpec` in its frame O (resting in its nominal pose on the table), for
+        `quasistatic.QuasiStaticHand`: one convex piece per strip (its hull, written once to the mesh
+        cache). Mass and inertia are nominal (uniform density): quasi-static closing moves nothing,
+        and ε takes its centre of mass from `centre`."""
+        pieces = tuple(ShapePiece("convex", (), mesh_path=_cached_hull_obj("observed", points - self.centre))
+                       for points in self.pieces)
+        points = self.points - self.centre
+        extents = np.ptp(points, axis=0)
+        volume = float(sum(ConvexHull(p).volume for p in self.pieces))
+        mass = DENSITY * volume
+        inertia = mass / 12.0 * np.array([extents[1] ** 2 + extents[2] ** 2, extents[0] ** 2 + extents[2] ** 2,
+                                          extents[0] ** 2 + extents[1] ** 2])
+        return ObjectSpec(name=name, pieces=pieces, mass=mass, inertia=(*map(float, inertia), 0.0, 0.0, 0.0),
+                          volume=volume, extents=tuple(map(float, extents)),
+                          rest_height=float(self.centre[2] - self.table_z), rpy_TO=(0.0, 0.0, 0.0),
+                          principal_axis=None, max_radius=self.max_radius, paper_class=None, closest_primitive=None)
+
+
+def block_factor(height_map: table_top.HeightMap, occupied: np.ndarray) -> int:
+    """Cells per block edge for a map whose occupied cells are `occupied` (module docstring, step 1)."""
+    i, j = np.nonzero(occupied)
+    side = max(np.ptp(i), np.ptp(j)) + 1 if len(i) else 1
+    block = min(MAX_BLOCK, max(MIN_BLOCK, side * height_map.cell / BLOCKS_ACROSS))
+    return max(1, int(round(block / height_map.cell)))
+
+
+def observed_shape(height_map: table_top.HeightMap, min_cells: int = 3) -> ObservedShape | None:
+    """The column solid of a height map as boxes (module docstring); None without an estimate."""
+    whole = table_top.estimate(height_map, min_cells)
+    if whole is None:
+        return None
+    h = np.nan_to_num(height_map.heights, nan=0.0)
+    from scipy import ndimage
+
+    closed = ndimage.grey_closing(h, size=(3, 3))  # as HeightMap.columns: small gaps filled
+    h = np.where(h > 0, h, closed)
+    f = block_factor(height_map, h > 0)
+    n = h.shape[0]
+    m = -(-n // f)  # blocks per side
+    padded = np.zeros((m * f, m * f))
+    padded[:n, :n] = h
+    blocks = padded.reshape(m, f, m, f).transpose(0, 2, 1, 3).reshape(m, m, f * f)
+    counts = np.sum(blocks > 0, axis=2)
+    sums = np.sum(blocks, axis=2)
+    occupied = counts * 2 >= f * f
+    heights = np.where(occupied, sums / np.maximum(counts, 1), 0.0)
+    block = f * height_map.cell
+    origin = np.asarray(height_map.origin, float)
+    pieces = []
+    for i0, i1, j0, j1 in _strips(heights):
+        ii, jj = np.meshgrid(np.arange(i0, i1), np.arange(j0, j1), indexing="ij")
+        tops = heights[i0:i1, j0:j1]
+        corners = []
+        for di in (0, 1):
+            for dj in (0, 1):
+                x = origin[0] + (ii + di).ravel() * block
+                y = origin[1] + (jj + dj).ravel() * block
+                for z in (np.zeros(tops.size), tops.ravel()):
+                    corners.append(np.column_stack([x, y, height_map.table_height + z]))
+        pieces.append(np.unique(np.vstack(corners), axis=0))
+    if not pieces:
+        return None
+    return ObservedShape(tuple(pieces), np.asarray(whole.centre, float), float(height_map.table_height), block)
+
+
+def _strips(heights: np.ndarray) -> list[tuple[int, int, int, int]]:
+    """Strips (i0, i1, j0, j1), ends exclusive, covering the blocks of positive height: each row's runs
+    of occupied blocks along j, a run merged with the same run of the rows that follow while its heights
+    stay within `LEVEL` of the first row's."""
+    strips = []
+    open_runs: dict[tuple[int, int], int] = {}  # (j0, j1) -> first row
+    m = heights.shape[0]
+    for i in range(m + 1):
+        runs = set()
+        if i < m:
+            occupied = np.concatenate([[False], heights[i] > 0, [False]])
+            edges = np.flatnonzero(np.diff(occupied.astype(int)))
+            runs = {(int(a), int(b)) for a, b in zip(edges[::2], edges[1::2])}
+        for run, first in list(open_runs.items()):
+            same = run in runs and np.all(np.abs(heights[i, run[0]:run[1]] - heights[first, run[0]:run[1]]) <= LEVEL)
+            if not same:
+                strips.append((first, i, *run))
+                del open_runs[run]
+        for run in runs:
+            open_runs.setdefault(run, i)
+    return sorted(strips)
+
+
+def describe(shape: ObservedShape) -> str:
+    """One line: pieces, block, height, for logs."""
+    return f"{len(shape.pieces)} pieces of {shape.block * 1000:.0f} mm blocks, {shape.height * 100:.1f} cm tall"

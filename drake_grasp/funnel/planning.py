@@ -1,0 +1,124 @@
+"""From an estimate to the grasp to execute and its candidate poses: the seam between the decision and
+the executor.
+
+`choose_grasp` is what the supervisor calls when the exploration ends. Without the funnel search (the
+paper's algorithm: no `perception.grasp_search`, or no height map to close the hand on) it is the
+paper's: the grasp of the most resembling shape (`primitives.decision`), at its primitive's pose, with
+its near-symmetric equivalents as the alternatives the executor tries when the arm cannot reach it.
+With the search, each of the paper's three grasps is scored on the shape the camera saw
+(`funnel.search`); the decision vetoes a grasp whose funnel is empty (`decision.choose_with_funnels`),
+and the grasp executed comes with its candidates, widest funnel first, which the executor tries in
+that order until the arm reaches one (`GraspExecutor.plan_reachable_motion`).
+
+One search per decision: the branches of one exploration (Fig. 6 executes every grasp from a copy of
+the state at the decision) share it through a small cache keyed by what the search reads.
+"""
+
+from __future__ import annotations
+
+import collections
+import dataclasses
+import hashlib
+
+import numpy as np
+
+from drake_grasp.funnel.observed_shape import observed_shape
+from drake_grasp.funnel.params import FunnelParams
+from drake_grasp.funnel.search import FunnelSearch, search
+from drake_grasp.grasps import GRASP_OF_SHAPE, GraspPlan, GraspType, near_symmetric_plans, plan_compliant_grasp
+from drake_grasp.primitives.decision import choose_shape, choose_with_funnels
+from drake_grasp.primitives.scores import SHAPES
+from drake_grasp.primitives.table_top import HeightMap
+
+_SEARCHED = tuple(GraspType(GRASP_OF_SHAPE[s]) for s in SHAPES)  # the paper's three grasps
+_CACHE: collections.OrderedDict = collections.OrderedDict()
+_CACHE_SIZE = 4
+
+
+@dataclasses.dataclass(frozen=True)
+class GraspChoice:
+    """What the decision chose and what the executor is to try.
+
+    Attributes:
+        chosen: the decision's grasp (the funnel's veto applied).
+        paper_choice: the paper's argmax alone (differs from `chosen` only where a funnel vetoed it).
+        executed: `chosen`, or the grasp the caller forced.
+        plan: the executed grasp's first pose.
+        alternatives: (what it is, plan) to try in order when the arm cannot reach `plan`.
+        search: the funnel search (None: the paper's algorithm).
+    """
+
+    chosen: str
+    paper_choice: str
+    executed: str
+    plan: GraspPlan
+    alternatives: list
+    search: FunnelSearch | None = None
+
+
+def choose_grasp(estimate, grasp_estimate, forced: str | None = None, params: FunnelParams | None = None,
+                 height_map: HeightMap | None = None, exclude: tuple = ()) -> GraspChoice:
+    """The grasp to execute and its candidates (module docstring).
+
+    Args:
+        estimate: the primitives' `primitives.estimate.ObjectEstimate` (its resemblances and table-top
+            uncertainty).
+        grasp_estimate: the `grasps.ObjectEstimate` the poses are computed from (with any added error).
+        forced: execute this grasp instead of the chosen one.
+        params: the funnel search's choices; None: the paper's algorithm.
+        height_map: what the depth views saw; None or empty: the paper's algorithm.
+        exclude: grasps that already failed on this object (a later attempt): the decision runs
+            without them (`decision.choose_shape`).
+    """
+    resemblances = dict(estimate.resemblances)
+    excluded = tuple(shape for shape, grasp in GRASP_OF_SHAPE.items() if grasp in exclude)
+    paper_choice = GRASP_OF_SHAPE[choose_shape(resemblances, excluded)]
+    found = None
+    if params is not None and height_map is not None and paper_choice != GraspType.PRECISION.value:
+        found = _search(grasp_estimate, params, height_map, _uncertainty_centre(estimate))
+    if found is None:
+        executed = forced or paper_choice
+        plan = plan_compliant_grasp(executed, grasp_estimate)
+        alternatives = [(f"the grasp turned {np.degrees(turn):+.0f}° about the approach", p)
+                        for turn, p in near_symmetric_plans(plan)[1:]]
+        return GraspChoice(paper_choice, paper_choice, executed, plan, alternatives)
+    empty = {shape: found.funnels[GraspType(GRASP_OF_SHAPE[shape])].empty for shape in SHAPES}
+    chosen = GRASP_OF_SHAPE[choose_with_funnels(resemblances, empty, excluded)]
+    executed = forced or chosen
+    funnel = found.funnels.get(GraspType(executed))
+    if funnel is None:  # a forced precision grasp: the search does not cover it
+        plan = plan_compliant_grasp(executed, grasp_estimate)
+        return GraspChoice(chosen, paper_choice, executed, plan,
+                           [(f"the grasp turned {np.degrees(t):+.0f}° about the approach", p)
+                            for t, p in near_symmetric_plans(plan)[1:]], found)
+    ordered = funnel.ordered()
+    first, rest = ordered[0], ordered[1:]
+    alternatives = [(f"the pose {c.variant.describe()} (ε_mean {c.epsilon_mean:.3f})", c.plan) for c in rest]
+    return GraspChoice(chosen, paper_choice, executed, first.plan, alternatives, found)
+
+
+def _uncertainty_centre(estimate) -> float | None:
+    table_top = getattr(estimate, "table_top", None) or {}
+    uncertainty = table_top.get("uncertainty") or {}
+    value = uncertainty.get("centre")
+    return None if value is None else float(value)
+
+
+def _search(grasp_estimate, params: FunnelParams, height_map: HeightMap, uncertainty: float | None):
+    """The search over the paper's three grasps, or None when the map holds no shape; cached."""
+    digest = hashlib.sha256()
+    for array in (height_map.heights, height_map.origin, grasp_estimate.center, grasp_estimate.R_WB,
+                  grasp_estimate.size, np.zeros(0) if grasp_estimate.principal_axis is None
+                  else grasp_estimate.principal_axis):
+        digest.update(np.ascontiguousarray(np.nan_to_num(np.asarray(array, float), nan=-1.0)).tobytes())
+    key = (digest.hexdigest(), height_map.cell, height_map.table_height, grasp_estimate.table_z, repr(params),
+           uncertainty)
+    if key in _CACHE:
+        _CACHE.move_to_end(key)
+        return _CACHE[key]
+    shape = observed_shape(height_map)
+    found = None if shape is None else search(shape, grasp_estimate, _SEARCHED, params, uncertainty)
+    _CACHE[key] = found
+    while len(_CACHE) > _CACHE_SIZE:
+        _CACHE.popitem(last=False)
+    return found

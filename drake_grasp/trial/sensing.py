@@ -1,0 +1,74 @@
+"""Did the grasp hold? What the robot itself can tell at the end of an attempt: the wrist camera's view.
+
+A real WAM and BH8 do not know where the object is; the simulator's contact results and the object's
+true pose are not sensors. What they can tell: the finger joint angles and motor efforts, the arm's
+joint torques, and the wrist camera. The finger angles do not tell a hold from a miss here (measured
+on the generated objects: a plate missed by the precision grasp ends with every distal joint at its
+limit and the proximal joints at 0.95 rad, as a held ring does at 1.04 rad), so the test is the
+camera's:
+
+* at the end of the attempt (after the lift and the hold), the wrist camera's depth image is taken;
+  the object's pixels (the same segmentation the exploration uses: the label image) are back-projected
+  to world points (`table_top.back_project`);
+* the object is **held** when its highest visible points stand at least half the lift height above
+  the top the exploration measured (`LIFTED_FRACTION`): a lifted object rose with the hand; one left
+  behind, dropped or knocked over did not, and one out of view was not held either.
+
+It is evaluated once per attempt on the final state, so an attempt that missed still runs its lift
+and hold (simulated seconds, not wall minutes) before the next attempt.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+
+from drake_grasp.primitives import table_top
+from drake_grasp.primitives.camera_model import CameraIntrinsics
+
+LIFTED_FRACTION = 0.5  # of the lift height: the object's top must have risen this much to count as held
+TOP_PERCENTILE = 95  # the visible object's top: this percentile of its points' heights (robust to a stray pixel)
+
+
+@dataclasses.dataclass(frozen=True)
+class Sensed:
+    """What the camera told at the end of an attempt.
+
+    Attributes:
+        held: the object's top rose with the hand.
+        pixels: object pixels seen.
+        top: the visible object's top height, m (NaN when unseen).
+        expected_top: the exploration's top plus `LIFTED_FRACTION` of the lift height, m.
+    """
+
+    held: bool
+    pixels: int
+    top: float
+    expected_top: float
+
+    def to_dict(self) -> dict:
+        return dataclasses.asdict(self)
+
+
+def visible_object_points(station, root_context, stride: int = 2) -> np.ndarray:
+    """World points (N × 3, m) of the object's pixels in the wrist camera's depth image."""
+    from drake_grasp.perception.wiring import object_labels
+
+    station_context = station.diagram.GetMyContextFromRoot(root_context)
+    depth = station.diagram.GetOutputPort("camera.depth_image").Eval(station_context).data
+    labels = station.diagram.GetOutputPort("camera.label_image").Eval(station_context).data
+    X_WC = station.diagram.GetOutputPort("camera.X_WC").Eval(station_context)
+    mask = np.isin(np.asarray(labels).reshape(labels.shape[:2]), object_labels(station))
+    intrinsics = CameraIntrinsics.from_camera_config(station.scenario.camera)
+    return table_top.back_project(depth, mask, intrinsics, X_WC.rotation().matrix(), X_WC.translation(), stride)
+
+
+def sense_hold(points_W: np.ndarray, top_before: float, lift_height: float) -> Sensed:
+    """Whether the object is held (module docstring): its visible points' top against the top the
+    exploration measured before the grasp (m, world z) and the lift height (m)."""
+    expected = float(top_before) + LIFTED_FRACTION * float(lift_height)
+    if len(points_W) == 0:
+        return Sensed(False, 0, float("nan"), expected)
+    top = float(np.percentile(np.asarray(points_W)[:, 2], TOP_PERCENTILE))
+    return Sensed(top >= expected, int(len(points_W)), top, expected)
