@@ -154,3 +154,21 @@ def test_with_the_search_the_executed_grasp_comes_with_its_candidates_widest_fun
     forced = choose_grasp(seen, estimate, "spherical", FunnelParams(), m)
     assert forced.search is choice.search and forced.executed == "spherical" and forced.chosen == "box"
     assert forced.plan == choice.search.funnels[GraspType.SPHERICAL].ordered()[0].plan
+
+
+def test_a_camera_driven_trial_searches_the_funnels_on_what_its_depth_views_saw(short_scenario):
+    """The scenario `funnel` end to end: the depth views' height map reaches the supervisor, every grasp
+    of the paper's three is scored on its column solid, and the record says what was searched."""
+    from drake_grasp.objects import resolve_object
+    from drake_grasp.station import load_scenario
+    from drake_grasp.trial.compliant import run_compliant_trial
+
+    scenario = load_scenario(scenario_name="funnel")
+    scenario.protocol.execution.hold_time = short_scenario.protocol.execution.hold_time
+    record = run_compliant_trial(scenario, resolve_object("cube:0.07"), seed=1)
+    search = record.grasp_search
+    assert set(search["funnels"]) == {"spherical", "cylindrical", "box"}
+    assert search["grasps_closed"] == 474 and search["neighbourhood"] == 9 and search["pieces"] >= 1
+    assert search["paper_choice"] == record.chosen_grasp  # a cube: the box grasp's funnel is open
+    assert search["funnels"]["box"]["primitive"] > 0
+    assert record.success, record.summary()
