@@ -18,8 +18,8 @@ primitives:
   no object model, no ground truth, no contact planning. With the funnel search (a scenario's
   `perception.grasp_search`, beyond the paper), each grasp's pose is varied and scored by closing the
   hand quasi-statically on the shape the depth views saw, a grasp with an empty funnel is not chosen
-  when another has one, and the executed pose is the centre of the widest funnel
-  (`funnel.planning.choose_grasp`). A study of how far off an estimate may be
+  when another has one, and a grasp whose own pose has an empty funnel is moved to the centre of the
+  widest one (`funnel.planning.choose_grasp`). A study of how far off an estimate may be
   (issue 15) gives a known `estimate_error.EstimateError`, added to the estimate before the grasp
   is computed from it (the decision, the grasp of the most resembling shape, is not affected).
 * **approach, close, lift, hold**: the same sequence, controller and timings as every other method

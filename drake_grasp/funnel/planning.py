@@ -7,7 +7,8 @@ paper's: the grasp of the most resembling shape (`primitives.decision`), at its 
 its near-symmetric equivalents as the alternatives the executor tries when the arm cannot reach it.
 With the search, each of the paper's three grasps is scored on the shape the camera saw
 (`funnel.search`); the decision vetoes a grasp whose funnel is empty (`decision.choose_with_funnels`),
-and the grasp executed comes with its candidates, widest funnel first, which the executor tries in
+and the grasp executed comes with its candidates in the search's order (the primitive's pose while
+its funnel is open, else the widest funnel's centre, then the rest), which the executor tries in
 that order until the arm reaches one (`GraspExecutor.plan_reachable_motion`).
 
 One search per decision: the branches of one exploration (Fig. 6 executes every grasp from a copy of
