@@ -293,6 +293,15 @@ def near_symmetric_plans(plan: GraspPlan) -> list[tuple[float, GraspPlan]]:
     return [(0.0, plan)] + [(turn, turned_about_approach(plan, turn)) for turn in turns]
 
 
+def near_symmetric_alternatives(plan: GraspPlan) -> list[tuple[str, GraspPlan]]:
+    """(what it is, plan) of each of `plan`'s near-symmetric equivalents, the smallest turn first: the
+    alternatives the executor tries when the arm cannot reach `plan` (`GraspExecutor.plan_reachable_motion`)."""
+    return [(f"{TURNED} {math.degrees(turn):+.0f}° {ABOUT_APPROACH}", p) for turn, p in near_symmetric_plans(plan)[1:]]
+
+
+TURNED, ABOUT_APPROACH = "the grasp turned", "about the approach"  # the words of a near-symmetric alternative
+
+
 def oracle_estimate(X_WO: RigidTransform, spec) -> ObjectEstimate:
     """The ground-truth estimate of an object (for oracle trials and tests): its axes and extents."""
     R_WO = X_WO.rotation().matrix()

@@ -62,6 +62,11 @@ import numbers
 import numpy as np
 from scipy.spatial import ConvexHull, QhullError
 
+# The project's ε convention (docs/design.md §4.4-4.5): μ 0.5 and 8 cone edges, as Fig. 4 and GraspIt!'s
+# point contacts; every run-time and study use of ε takes these (funnel.search, studies.epsilon_physics).
+FRICTION = 0.5
+CONE_EDGES = 8
+
 # Normals shorter than this (dimensionless; normals are directions and are normalised here) are
 # rejected as zero.
 _MIN_NORMAL_LENGTH = 1e-9

@@ -210,6 +210,21 @@ class QuasiStaticHand:
             approach_distance=travelled, touched_during_approach=touched, broke_away=broke_away,
         )
 
+    def grasp_plan(self, plan, X_WO: RigidTransform) -> QuasiStaticGrasp:
+        """The quasi-static grasp of a `grasps.GraspPlan` as the executor runs it, with the object at X_WO
+        (world): a plan that stops on contact (a compliant grasp) approaches from its pre-grasp pose until
+        a link touches, at most to its target; any other (a planned grasp) is taken to its target. The
+        hand starts at the plan's spread and finger preshape, then closes with breakaway."""
+        start = np.zeros(8)
+        start[0:2] = plan.spread
+        start[2:8] = plan.finger_preshape
+        X_PH = RigidTransform([0.0, 0.0, -hand.PALM_HEIGHT])  # the hand base, seen from the palm
+        X_OW = X_WO.inverse()
+        if plan.stop_on_contact:
+            return self.grasp(X_OW @ plan.X_WP_pregrasp @ X_PH, plan.spread, approach=True,
+                              max_approach=plan.approach_distance, start_angles=start)
+        return self.grasp(X_OW @ plan.X_WP_target @ X_PH, plan.spread, approach=False, start_angles=start)
+
     def _approach(self, X_OH: RigidTransform, max_approach: float) -> tuple[float, str | None]:
         z_O = X_OH.rotation().col(2)  # palm normal, object frame
         travelled = 0.0

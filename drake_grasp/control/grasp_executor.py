@@ -22,7 +22,7 @@ from pydrake.multibody.tree import ModelInstanceIndex
 from pydrake.systems.framework import BasicVector, Context, DiagramBuilder, LeafSystem, State
 
 from drake_grasp.control.arm_motion import ArmKinematics, JointPath, ReachError
-from drake_grasp.grasps import GraspPlan, near_symmetric_plans
+from drake_grasp.grasps import ABOUT_APPROACH, TURNED, GraspPlan, near_symmetric_alternatives
 from drake_grasp.robot.hand import HandAction
 from drake_grasp.protocol import ExecutionTimes
 
@@ -181,8 +181,7 @@ class GraspExecutor(LeafSystem):
             ReachError: none is reachable; its message says what was tried.
         """
         if alternatives is None:
-            alternatives = [(f"the grasp turned {np.degrees(turn):+.0f}° about the approach", p)
-                            for turn, p in near_symmetric_plans(plan)[1:]]
+            alternatives = near_symmetric_alternatives(plan)
         tried = []
         for label, candidate in [("", plan)] + list(alternatives):
             try:
@@ -193,9 +192,9 @@ class GraspExecutor(LeafSystem):
             return dataclasses.replace(motion, fallback=label, unreachable=tried[0][1] if tried else "")
         if len(tried) == 1:
             raise ReachError(tried[0][1])
-        turns = [label.removeprefix("the grasp turned ").removesuffix(" about the approach") for label, _ in tried[1:]]
-        if all(label.startswith("the grasp turned ") for label, _ in tried[1:]):
-            raise ReachError(f"{tried[0][1]}, nor the grasp turned {', '.join(turns)} about the approach")
+        turns = [label.removeprefix(f"{TURNED} ").removesuffix(f" {ABOUT_APPROACH}") for label, _ in tried[1:]]
+        if all(label.startswith(TURNED) for label, _ in tried[1:]):
+            raise ReachError(f"{tried[0][1]}, nor {TURNED} {', '.join(turns)} {ABOUT_APPROACH}")
         raise ReachError(f"{tried[0][1]}, nor any of {len(tried) - 1} other poses ({tried[1][0]}, ...)")
 
     def _start_grasp(self, progress: _Progress, plan: GraspPlan, q_start: np.ndarray, t: float,

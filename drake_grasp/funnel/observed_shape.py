@@ -111,11 +111,7 @@ def observed_shape(height_map: table_top.HeightMap, min_cells: int = 3) -> Obser
     whole = table_top.estimate(height_map, min_cells)
     if whole is None:
         return None
-    h = np.nan_to_num(height_map.heights, nan=0.0)
-    from scipy import ndimage
-
-    closed = ndimage.grey_closing(h, size=(3, 3))  # as HeightMap.columns: small gaps filled
-    h = np.where(h > 0, h, closed)
+    h = height_map.filled_heights()
     f = block_factor(height_map, h > 0)
     n = h.shape[0]
     m = -(-n // f)  # blocks per side

@@ -26,7 +26,7 @@ import numpy as np
 from drake_grasp.funnel.observed_shape import observed_shape
 from drake_grasp.funnel.params import FunnelParams
 from drake_grasp.funnel.search import FunnelSearch, search
-from drake_grasp.grasps import GRASP_OF_SHAPE, GraspPlan, GraspType, near_symmetric_plans, plan_compliant_grasp
+from drake_grasp.grasps import GRASP_OF_SHAPE, GraspPlan, GraspType, near_symmetric_alternatives, plan_compliant_grasp
 from drake_grasp.primitives.decision import choose_shape, choose_with_funnels
 from drake_grasp.primitives.scores import SHAPES
 from drake_grasp.primitives.table_top import HeightMap
@@ -80,18 +80,14 @@ def choose_grasp(estimate, grasp_estimate, forced: str | None = None, params: Fu
     if found is None:
         executed = forced or paper_choice
         plan = plan_compliant_grasp(executed, grasp_estimate)
-        alternatives = [(f"the grasp turned {np.degrees(turn):+.0f}° about the approach", p)
-                        for turn, p in near_symmetric_plans(plan)[1:]]
-        return GraspChoice(paper_choice, paper_choice, executed, plan, alternatives)
+        return GraspChoice(paper_choice, paper_choice, executed, plan, near_symmetric_alternatives(plan))
     empty = {shape: found.funnels[GraspType(GRASP_OF_SHAPE[shape])].empty for shape in SHAPES}
     chosen = GRASP_OF_SHAPE[choose_with_funnels(resemblances, empty, excluded)]
     executed = forced or chosen
     funnel = found.funnels.get(GraspType(executed))
     if funnel is None:  # a forced precision grasp: the search does not cover it
         plan = plan_compliant_grasp(executed, grasp_estimate)
-        return GraspChoice(chosen, paper_choice, executed, plan,
-                           [(f"the grasp turned {np.degrees(t):+.0f}° about the approach", p)
-                            for t, p in near_symmetric_plans(plan)[1:]], found)
+        return GraspChoice(chosen, paper_choice, executed, plan, near_symmetric_alternatives(plan), found)
     ordered = funnel.ordered()
     first, rest = ordered[0], ordered[1:]
     alternatives = [(f"the pose {c.variant.describe()} (ε_mean {c.epsilon_mean:.3f})", c.plan) for c in rest]

@@ -43,11 +43,8 @@ from pydrake.math import RigidTransform, RotationMatrix
 from drake_grasp.funnel.observed_shape import ObservedShape
 from drake_grasp.funnel.params import FunnelParams
 from drake_grasp.grasps import NEAR_SYMMETRIES, GraspPlan, GraspType, ObjectEstimate, plan_compliant_grasp
-from drake_grasp.quality import grasp_quality
-from drake_grasp.robot import hand
+from drake_grasp.quality import CONE_EDGES, FRICTION, grasp_quality
 
-FRICTION = 0.5  # μ of the ε metric (docs/design.md §4.4), as Fig. 4
-CONE_EDGES = 8  # edges of each linearised friction cone (§4.5)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -191,19 +188,13 @@ class FunnelScorer:
 
         self.shape = shape
         self._hand = QuasiStaticHand(shape.as_object_spec(), table=True)
-        self._X_OW = shape.X_WO.inverse()
-        self._X_PH = RigidTransform([0.0, 0.0, -hand.PALM_HEIGHT])
         self._torque_scale = shape.max_radius
         self.closed = 0
 
     def epsilon(self, plan: GraspPlan) -> float:
         """ε of the plan's grasp: from its pre-grasp pose, approach until contact (or its target),
         close with breakaway, score the contacts about the observed centre."""
-        start = np.zeros(8)
-        start[0:2] = plan.spread
-        X_OH = self._X_OW @ plan.X_WP_pregrasp @ self._X_PH
-        grasp = self._hand.grasp(X_OH, plan.spread, approach=True, max_approach=plan.approach_distance,
-                                 start_angles=start)
+        grasp = self._hand.grasp_plan(plan, self.shape.X_WO)
         self.closed += 1
         points, normals = grasp.contact_arrays()
         return float(grasp_quality(points, normals, FRICTION, np.zeros(3), self._torque_scale, CONE_EDGES).epsilon)

@@ -145,15 +145,18 @@ class HeightMap:
         heights = np.fmax(self.heights, other.heights)
         return HeightMap(self.origin.copy(), self.cell, heights, self.table_height, self.clipped or other.clipped)
 
-    def columns(self) -> tuple[np.ndarray, np.ndarray]:
-        """(xy (N×2) of the occupied cells' centres, their heights (N)) after closing the map's small
-        gaps: a cell no point fell in, between seen cells, takes the height its neighbours give it
-        (a grey closing over 3 × 3 cells), so that sparse views do not leave holes in the solid."""
+    def filled_heights(self) -> np.ndarray:
+        """The heights (n × n, 0 where empty) after closing the map's small gaps: a cell no point fell in,
+        between seen cells, takes the height its neighbours give it (a grey closing over 3 × 3 cells),
+        so that sparse views do not leave holes in the solid."""
         from scipy import ndimage
 
         h = np.nan_to_num(self.heights, nan=0.0)
-        closed = ndimage.grey_closing(h, size=(3, 3))
-        filled = np.where(h > 0, h, closed)
+        return np.where(h > 0, h, ndimage.grey_closing(h, size=(3, 3)))
+
+    def columns(self) -> tuple[np.ndarray, np.ndarray]:
+        """(xy (N×2) of the occupied cells' centres, their heights (N)) of `filled_heights`."""
+        filled = self.filled_heights()
         i, j = np.nonzero(filled > 0)
         xy = self.origin + (np.column_stack([i, j]) + 0.5) * self.cell
         return xy, filled[i, j]

@@ -32,10 +32,9 @@ import numpy as np
 
 from drake_grasp.studies import calibration
 from drake_grasp.sweeps.results import ResultsTable, save_figure, write_atomically
+from drake_grasp.quality import CONE_EDGES, FRICTION  # the ε convention (docs/design.md §4.4-4.5)
 from drake_grasp.sweeps.stats import short_rate
 
-FRICTION = 0.5  # μ of the ε metric (docs/design.md §4.4)
-CONE_EDGES = 8  # edges of each linearised friction cone (§4.5)
 FIELDS = ["fingerprint", "object", "method", "grasp", "seed", "epsilon", "contacts", "links"]
 KEY = ["fingerprint", "object", "method", "grasp", "seed"]
 TYPES = {"fingerprint": "hex", "seed": "int", "epsilon": "float", "contacts": "int"}
@@ -65,9 +64,6 @@ def static_grasp(spec) -> StaticGrasp:
     Raises:
         ValueError: a camera-driven spec (its hand pose is decided during the simulation).
     """
-    from pydrake.math import RigidTransform
-
-    from drake_grasp.robot import hand
     from drake_grasp.protocol import TrialVariation
     from drake_grasp.quality import grasp_quality
     from drake_grasp.station import MakeStation
@@ -85,17 +81,8 @@ def static_grasp(spec) -> StaticGrasp:
         plan = oracle_plan(spec.grasp, error)(X_WO, obj)
     else:
         plan = planned_plan({"X_OH": spec.planned["X_OH"], "joint_angles": spec.planned["joint_angles"]}, error)(X_WO, obj)
-    X_PH = RigidTransform([0.0, 0.0, -hand.PALM_HEIGHT])  # the hand base, seen from the palm
-    start = np.zeros(8)
-    start[0:2] = plan.spread
-    start[2:8] = plan.finger_preshape
     sim, spec_object = _hand_for(spec.object, tuple(sorted(spec.object_options().items())))
-    if plan.stop_on_contact:  # compliant grasps: from the pre-grasp pose until contact, at most to the target
-        X_OH = X_WO.inverse() @ plan.X_WP_pregrasp @ X_PH
-        grasp = sim.grasp(X_OH, plan.spread, approach=True, max_approach=plan.approach_distance, start_angles=start)
-    else:  # planned grasps: the hand is taken to its planned pose, then closes
-        X_OH = X_WO.inverse() @ plan.X_WP_target @ X_PH
-        grasp = sim.grasp(X_OH, plan.spread, approach=False, start_angles=start)
+    grasp = sim.grasp_plan(plan, X_WO)
     points, normals = grasp.contact_arrays()
     quality = grasp_quality(points, normals, FRICTION, np.zeros(3), spec_object.max_radius, CONE_EDGES)
     return StaticGrasp(float(quality.epsilon), tuple(grasp.touching_links))
