@@ -1,12 +1,17 @@
 """The grasping station: a scenario (YAML) in, one Drake Diagram out.
 
 The station holds the MultibodyPlant (table, object, WAM, BarrettHand) and its SceneGraph, the WAM's
-joint PD actuators with gravity compensation, the hand controller (torque close with breakaway), and
+joint PD actuators with gravity compensation and the palm's impedance law that can take over from
+them (control.palm_impedance), the hand controller (torque close with breakaway), and
 the wrist RgbdSensor. It exports named ports, so that whoever drives it (the demo, a trial, the
 visual primitives) connects to names, not to the plant's internals:
 
 Input ports:
     wam.desired_state   [q (7), v (7)] the WAM tracks, rad and rad/s.
+    wam.arm_mode        1: the palm's impedance law drives the arm; 0 or unconnected: the joint PD.
+    wam.palm_target, wam.palm_force, wam.palm_stiffness, wam.palm_damping
+                        the impedance law's target pose (RigidTransform), force along the palm
+                        normal (N), and gains per palm axis (unconnected: the scenario's).
     hand.command        [spread target (rad), HandAction].
     hand.finger_preshape   proximal angle per finger for HandAction.PRESHAPE (rad); else unused.
 Output ports:
@@ -43,11 +48,13 @@ from pydrake.multibody.parsing import ModelDirective, ModelDirectives, Parser, P
 from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlant, MultibodyPlantConfig
 from pydrake.multibody.tree import ModelInstanceIndex, PdControllerGains
 from pydrake.systems.framework import Diagram, DiagramBuilder
+from pydrake.systems.primitives import Adder
 from pydrake.systems.sensors import CameraConfig, RgbdSensor
 
 from drake_grasp.robot import arm
 from drake_grasp.robot.contact import ContactParameters
 from drake_grasp.control.gravity_compensation import GravityCompensation
+from drake_grasp.control.palm_impedance import PalmImpedanceController, PalmImpedanceParams
 from drake_grasp.control.hand_controller import HandController, HandControllerParams, SetHandActuatorGains
 from drake_grasp.objects.drake_model import with_mass_scale
 from drake_grasp.objects import AddObject, ObjectSpec, resolve_object
@@ -92,6 +99,14 @@ class ArmParams:
     kp: list[float] = dataclasses.field(default_factory=lambda: [800.0, 800.0, 400.0, 400.0, 60.0, 60.0, 30.0])
     kd: list[float] = dataclasses.field(default_factory=lambda: [80.0, 80.0, 40.0, 40.0, 4.0, 4.0, 2.0])
     gravity_compensation: bool = True
+    # The palm's task-space impedance (control.palm_impedance), the arm's compliance mode for grasps
+    # that keep the fingertips on the table; inactive unless the station's wam.arm_mode asks for it.
+    # None: PalmImpedanceParams' defaults (and a scenario's dump, its fingerprint, without it).
+    palm_impedance: typing.Optional[PalmImpedanceParams] = None
+
+    def impedance(self) -> PalmImpedanceParams:
+        """The palm impedance's gains: the scenario's, or the defaults."""
+        return self.palm_impedance or PalmImpedanceParams()
 
 
 @dataclasses.dataclass
@@ -187,6 +202,10 @@ def validate_scenario(scenario: Scenario) -> None:
         raise ValueError(f"object.pose must be 6 finite numbers [x, y, z, roll, pitch, yaw], got {placement.pose}")
     if len(scenario.arm.kp) != arm.NUM_JOINTS or len(scenario.arm.kd) != arm.NUM_JOINTS:
         raise ValueError(f"arm.kp and arm.kd need {arm.NUM_JOINTS} gains each")
+    try:
+        scenario.arm.impedance().validate()
+    except ValueError as e:
+        raise ValueError(f"arm.palm_impedance.{e}") from None
     contact = scenario.contact
     if not (contact.friction >= 0 and math.isfinite(contact.friction)):
         raise ValueError(f"contact.friction must be >= 0, got {contact.friction}")
@@ -255,12 +274,26 @@ def MakeStation(scenario: Scenario, object_spec: ObjectSpec | None = None, *, ca
     SetHandActuatorGains(plant, hand, scenario.hand)
     plant.Finalize()
 
-    # The WAM: implicit PD in the plant + feed-forward gravity compensation.
-    builder.ExportInput(plant.get_desired_state_input_port(wam), "wam.desired_state")
+    # The WAM: implicit PD in the plant + feed-forward gravity compensation, and the palm's impedance
+    # law, which takes the arm over from the PD while wam.arm_mode is 1 (control.palm_impedance).
+    impedance = builder.AddNamedSystem("wam_palm_impedance",
+                                       PalmImpedanceController(plant, wam, scenario.arm.impedance()))
+    builder.Connect(plant.get_state_output_port(wam), impedance.GetInputPort("wam.state"))
+    builder.Connect(impedance.GetOutputPort("wam.desired_state"), plant.get_desired_state_input_port(wam))
+    builder.ExportInput(impedance.GetInputPort("joint_command"), "wam.desired_state")
+    for port, name in (("active", "wam.arm_mode"), ("palm_target", "wam.palm_target"),
+                       ("normal_force", "wam.palm_force"), ("stiffness", "wam.palm_stiffness"),
+                       ("damping", "wam.palm_damping")):
+        builder.ExportInput(impedance.GetInputPort(port), name)
+    actuation = impedance.GetOutputPort("wam.actuation")
     if scenario.arm.gravity_compensation:
         gravity = builder.AddNamedSystem("wam_gravity_compensation", GravityCompensation(plant, wam))
         builder.Connect(plant.get_state_output_port(), gravity.get_input_port())
-        builder.Connect(gravity.get_output_port(), plant.get_actuation_input_port(wam))
+        total = builder.AddNamedSystem("wam_actuation", Adder(2, arm.NUM_JOINTS))
+        builder.Connect(gravity.get_output_port(), total.get_input_port(0))
+        builder.Connect(actuation, total.get_input_port(1))
+        actuation = total.get_output_port()
+    builder.Connect(actuation, plant.get_actuation_input_port(wam))
 
     # The hand.
     hand_params = dataclasses.replace(scenario.hand, period=scenario.plant_config.time_step) \
