@@ -1,6 +1,12 @@
 """Objects from model files: SDFormat and URDF (parsed by Drake) and MuJoCo MJCF object files (read
 here), with the file's inertia checked before it can reach the plant.
 
+SDFormat and URDF: Drake's parser takes mesh geometry only as OBJ, VTK or glTF (any other format is
+refused with "MakeConvexHull only applies to .obj, .vtk, and .gltf meshes"), while URDFs exported by
+CAD tools and ROS packages commonly name STL, PLY or DAE meshes. Such a mesh is converted to an OBJ
+in the cache (named by its content's hash; never beside the user's file) and the model text given to
+the parser names the OBJ (:func:`drake_readable_model`); units and the file's ``scale`` are unchanged.
+
 Every inertial read from a file is checked (:mod:`drake_grasp.objects.inertia_checks`), and an
 implausible one replaced by the collision geometry's, before it can reach the plant.
 
@@ -17,11 +23,14 @@ goes through the same repair and joining as a mesh file (:mod:`drake_grasp.objec
 from __future__ import annotations
 
 import hashlib
+import html
 import math
 import os
+import re
 import warnings
 import xml.etree.ElementTree as ElementTree
 from pathlib import Path
+from xml.sax.saxutils import escape
 
 import numpy as np
 import trimesh
@@ -30,13 +39,13 @@ from pydrake.math import RigidTransform, RollPitchYaw, RotationMatrix
 from pydrake.multibody.parsing import Parser
 
 from drake_grasp.objects.mesh_files import (
-    _load_checked_mesh, _model_name, _one_line, object_from_triangles, read_triangles,
+    _Y_UP_SUFFIXES, _load_checked_mesh, _model_name, _one_line, object_from_triangles, read_triangles,
 )
 from drake_grasp.objects import packages, sizes
 from drake_grasp.objects.pieces import IMPORT_VERSION, _decompose
 from drake_grasp.objects.spec import (
     DEFAULT_DENSITY, DEFAULT_MAX_PIECES, InertiaWarning, ObjectError, ObjectSpec, ShapePiece, YELLOW_PAPER_RGBA,
-    _cached_hull_obj,
+    _cached_hull_obj, _obj_text, _write_atomically, cache_dir,
 )
 from drake_grasp.objects.mass_properties import (
     _make_spec, _mass_properties_sampled, _mass_properties_summed, _piece_points,
@@ -118,6 +127,100 @@ def non_finite_number(path: Path) -> str | None:
     return None
 
 
+# --- Meshes Drake's parser cannot read ----------------------------------------------------------
+
+DRAKE_MESH_SUFFIXES = (".obj", ".vtk", ".gltf")  # what Drake's parser takes as mesh geometry
+CONVERTED_VERSION = 1  # in the converted OBJs' names: a change to the conversion makes new files
+_URDF_FILENAME = re.compile(r"""(\bfilename\s*=\s*)(["'])(.*?)\2""", re.DOTALL)
+_SDF_URI = re.compile(r"(<uri\s*>)([^<]*)(</uri\s*>)")
+
+
+def _reference_path(reference: str, base: Path, package_map, local: dict, label: str) -> Path:
+    """The file a model file's mesh reference names, resolved as Drake resolves it: ``package://``
+    (and SDFormat's ``model://``) against the parser's PackageMap (the packages registered by
+    :func:`drake_grasp.objects.packages.register_packages`), ``file://`` and absolute paths as
+    they are, a relative path against the model file's folder `base`."""
+    match = re.match(r"(package|model)://([^/]+)/(.*)", reference)
+    if match:
+        try:
+            with packages.quiet_downloads():
+                root = package_map.GetPath(match.group(2))
+        except Exception as error:  # a remote package that cannot be downloaded
+            problem = (packages.download_problem(str(error), local)
+                       or f"cannot resolve {reference} ({_one_line(error)})")
+            raise ObjectError(f"{label}: {problem}") from None
+        return Path(root) / match.group(3)
+    if reference.startswith("file://"):
+        return Path(reference[len("file://"):])
+    return base / reference
+
+
+def _converted_obj(mesh_path: Path, label: str) -> Path:
+    """An OBJ in the cache holding the triangles of a mesh file Drake cannot read (STL, PLY, GLB,
+    MuJoCo .msh, DAE if pycollada is installed: what :func:`drake_grasp.objects.mesh_files.read_triangles`
+    reads), in the file's own units (the model's ``scale`` still applies) and, for GLB, turned z up
+    as Drake turns a glTF. Named by the file's content, so a second load reads it again without
+    converting; written atomically. ObjectError (one line, from read_triangles) for a file that is
+    missing or unreadable."""
+    if not mesh_path.is_file():
+        raise ObjectError(f"{label}: file not found")
+    suffix = mesh_path.suffix.lower()
+    digest = hashlib.sha256(mesh_path.read_bytes() + suffix.encode()).hexdigest()[:20]
+    path = cache_dir() / "converted" / f"{_model_name(mesh_path.stem)}-{digest}-c{CONVERTED_VERSION}.obj"
+    if not path.exists():
+        mesh = read_triangles(mesh_path, label)
+        if suffix in _Y_UP_SUFFIXES:
+            mesh.apply_transform(trimesh.transformations.rotation_matrix(math.pi / 2, [1.0, 0.0, 0.0]))
+        path.parent.mkdir(parents=True, exist_ok=True)
+        _write_atomically(path, _obj_text(np.asarray(mesh.vertices), np.asarray(mesh.faces)))
+    return path.resolve()
+
+
+def drake_readable_model(path: Path, label: str, package_map, local: dict) -> str | None:
+    """The text of an SDFormat or URDF file with each mesh Drake cannot read converted to an OBJ
+    (:func:`_converted_obj`) and named by it; None if the file names no such mesh (it is then
+    parsed as it is) or is not XML (the parser says why).
+
+    The text is parsed from a string, not from its folder, so every other path it gives is made an
+    absolute ``file://`` URI (Drake refuses a bare path in a string); ``package://`` URIs are kept
+    (the parser's PackageMap resolves them as before). Only the file-naming attributes and elements
+    are rewritten (URDF ``filename``, SDFormat ``<uri>``), textually, so the rest of the file (its
+    ``drake:`` elements, comments, scales) reaches the parser unchanged."""
+    try:
+        root = ElementTree.parse(path).getroot()
+    except (ElementTree.ParseError, OSError):
+        return None
+    if root.tag not in ("robot", "sdf"):
+        return None
+    meshes = {((mesh.get("filename") if root.tag == "robot" else mesh.findtext("uri")) or "").strip()
+              for mesh in root.iter("mesh")}
+    unreadable = {reference for reference in meshes
+                  if reference and Path(reference).suffix.lower() not in DRAKE_MESH_SUFFIXES}
+    if not unreadable:
+        return None
+    base = path.resolve().parent
+
+    def rewritten(reference: str) -> str:
+        if reference in unreadable:
+            mesh_path = _reference_path(reference, base, package_map, local, label)
+            return f"file://{_converted_obj(mesh_path, f'{label}: mesh {reference}')}"
+        if not reference or "://" in reference:
+            return reference
+        return f"file://{(base / reference).resolve()}"  # not percent-encoded: Drake reads the path as it is
+
+    def attribute(match) -> str:
+        prefix, quote, value = match.groups()
+        new = escape(rewritten(html.unescape(value).strip()), {'"': "&quot;", "'": "&apos;"})
+        return f"{prefix}{quote}{new}{quote}"
+
+    def element(match) -> str:
+        start, value, end = match.groups()
+        return f"{start}{escape(rewritten(html.unescape(value).strip()))}{end}"
+
+    text = path.read_text(errors="replace")
+    return _URDF_FILENAME.sub(attribute, text) if root.tag == "robot" else _SDF_URI.sub(element, text)
+
+
 def object_from_sdf(
     path: str | os.PathLike,
     mass: float | None = None,
@@ -141,10 +244,11 @@ def object_from_sdf(
     Limits: one model with one body and no joints (not welded, not articulated); the file's
     visuals, friction and contact properties are replaced by ours (pieces drawn in `rgba`, the
     scene's ContactParameters; a compliant hydroelastic ``.vtk`` mesh is read as its boundary
-    surface); ``package://`` URIs resolve against the package.xml files in the file's folder and
-    above it and under `package_path` (:mod:`drake_grasp.objects.packages`), else Drake's default
-    PackageMap; half spaces, height maps and other non-solid shapes are rejected. An object no hand
-    can grasp is refused (:mod:`drake_grasp.objects.sizes`).
+    surface); a mesh Drake cannot read (STL, PLY, DAE, GLB) is read from an OBJ converted into the
+    cache (:func:`drake_readable_model`); ``package://`` URIs resolve against the package.xml files
+    in the file's folder and above it and under `package_path` (:mod:`drake_grasp.objects.packages`),
+    else Drake's default PackageMap; half spaces, height maps and other non-solid shapes are
+    rejected. An object no hand can grasp is refused (:mod:`drake_grasp.objects.sizes`).
 
     Args:
         path: The model file (.sdf or .urdf).
@@ -181,11 +285,17 @@ def object_from_sdf(
     problem = packages.missing_package_problem(path.read_text(errors="replace"), parser.package_map(), local, path)
     if problem:
         raise ObjectError(f"{label}: {problem}")
+    kind = path.suffix.lower().lstrip(".")
+    text = drake_readable_model(path, label, parser.package_map(), local) if kind in ("sdf", "urdf") else None
     try:
         with packages.quiet_downloads():
-            models = parser.AddModels(str(path.resolve()))
+            if text is None:
+                models = parser.AddModels(str(path.resolve()))
+            else:
+                models = parser.AddModelsFromString(text, kind)
     except Exception as error:  # Drake raises RuntimeError with multi-line messages.
-        problem = packages.download_problem(str(error), local) or f"cannot parse ({_one_line(error)})"
+        message = str(error).replace(f"<literal-string>.{kind}", str(path.resolve()))
+        problem = packages.download_problem(message, local) or f"cannot parse ({_one_line(message)})"
         raise ObjectError(f"{label}: {problem}") from None
     if len(models) != 1:
         raise ObjectError(f"{label}: expected one model, found {len(models)}")
