@@ -12,16 +12,17 @@ model and no contact planning: the hand's compliance does the rest.
 * **cylindrical grasp**: cylindrical mode; the hand is centred on the principal axis, its fingers
   closing perpendicular to it; it approaches perpendicular to the axis, from as high above as the
   axis allows, until contact.
-* **precision grasp** (the paper's future work: the "flower", small and flat objects): cylindrical
-  mode, palm level above the object's centre, the fingers closing across the shorter side of its
-  footprint, and the palm as low as the table lets it go: the fingertips' deepest sweep passes
-  `PRECISION_CLEARANCE` above the table, where they move almost level (the tip travels 4 cm inward
-  while it rises 2 mm), meant to meet a thin object at its foot and close along the table (the table
-  as the environmental constraint: Eppner et al., "Exploitation of environmental constraints in human
-  and robotic grasping", IJRR 2015). Where it cannot reach: closing on anything narrower than about
-  20 cm, the distal link is past vertical when it meets the object's edge, so the pad's inner corners
-  pass 13-17 mm above its lowest ones; plates under about 1.5 cm and sticks under about 2 cm across are
-  missed (the BH8's geometry: docs/design.md §5.4b, docs/results/flower.md).
+* **precision grasp**, the flower grasp (the paper's future work: the "flower", small and flat
+  objects): cylindrical mode with the arm compliant (`control.palm_impedance`). The palm is level above
+  the object's centre, its fingers closing across the shorter side of the footprint. The fingers are
+  bent before the approach (a preshape) to the largest angle at which their tips land clear of the
+  object (`FLOWER_MARGIN` beyond its half-width, for the estimate's and the placement's errors), and
+  the palm lands them on the table, guarded. The hand then closes while the arm presses
+  `FLOWER_FORCE` along the palm normal and follows the tips down as they rise, so that they slide
+  along the table into the object's foot (Kazemi et al., RSS 2012; Autonomous Robots 2014: the same
+  WAM and BarrettHand, a guarded landing of the fingertips and a close under a light force on the
+  table; Eppner et al., IJRR 2015: the table as the environmental constraint). What it holds and
+  misses, and what else was tried: docs/design.md §5.4f, docs/results/flower.md.
 * **box grasp**: cylindrical mode; the hand is aligned with the box's axes: it approaches along the
   box axis closest to the vertical (onto the top face), and its fingers close across the shorter side
   of that face. A face wider than the fingers' knuckles are apart would catch the open proximal links
@@ -57,9 +58,17 @@ _KNUCKLE_BEHIND_PALM = hand.PALM_HEIGHT - hand.DW
 _KNUCKLE_SPACING_HALF = hand.A1
 # Fingertips pass this far above the table at the bottom of their sweep (a choice), m.
 TABLE_CLEARANCE = 0.005
-# The precision grasp's fingertips pass this far above the table at the bottom of their sweep (a
-# choice: below the middle of a 6 mm plate, above the table's contact margin), m.
-PRECISION_CLEARANCE = 0.002
+# The flower grasp (docs/design.md §5.4f; measured on plates, cubes and sticks, oracle, two seeds):
+# its fingertips land this far beyond the object's half-width across the closing direction (m: the
+# placement's +-1 cm plus the estimate's error), their deepest point this far below the table (m: the
+# landing's target, so that the guarded approach ends on the table, not above it), and the arm presses
+# this hard along the palm normal while the hand closes (N: 6 N let the tips ride over 8-12 mm plates).
+FLOWER_MARGIN = 0.012
+FLOWER_SINK = 0.006
+FLOWER_FORCE = 15.0
+# The range of the preshape's proximal angle, rad: from where the tips still point down (below 40 deg
+# they would land flat) to where they nearly meet under the palm.
+FLOWER_PRESHAPE_RANGE = (math.radians(40.0), math.radians(85.0))
 # Approaches within this angle of the vertical are "from above" for the table clearance.
 _FROM_ABOVE = math.radians(45.0)
 _DOWN = np.array([0.0, 0.0, -1.0])
@@ -140,6 +149,12 @@ class GraspPlan:
         approach_distance: the palm starts this far back along -z_P from the target, m.
         stop_on_contact: end the approach early when the hand touches something.
         finger_preshape: proximal and distal angles (6, rad) to take before the approach (planned grasps).
+        palm_force: the force the arm keeps along the palm normal while the hand closes, N. Above
+            zero, the arm is compliant (`control.palm_impedance`) from the approach to the end of the
+            close: the approach is a guarded landing (it ends when the hand touches), and the close
+            holds the palm in place across and in tilt while pressing this hard along its normal,
+            soft along it, so that fingertips that landed on the table stay on it as they close
+            (the flower grasp). Zero: the arm is held by position throughout, as in the paper.
     """
 
     grasp: GraspType | None
@@ -148,6 +163,12 @@ class GraspPlan:
     approach_distance: float = 0.12
     stop_on_contact: bool = True
     finger_preshape: tuple[float, ...] = (0.0,) * 6
+    palm_force: float = 0.0
+
+    @property
+    def compliant_arm(self) -> bool:
+        """Whether the arm complies (palm impedance) during the approach and the close."""
+        return self.palm_force > 0.0
 
     @property
     def X_WP_pregrasp(self) -> RigidTransform:
@@ -232,22 +253,36 @@ def box_grasp(estimate: ObjectEstimate) -> GraspPlan:
     return GraspPlan(GraspType.BOX, spread, RigidTransform(R_WP, target))
 
 
+def flower_landing_angle(half_width: float, spread: float) -> float:
+    """The largest coupled proximal angle (rad, whole degrees within FLOWER_PRESHAPE_RANGE) at which the
+    fingertips' lowest centimetre lands at least `half_width` + FLOWER_MARGIN from the palm's closing
+    plane (`hand.fingertip_reach`); the range's low end if none does (a wide object)."""
+    low, high = (round(math.degrees(a)) for a in FLOWER_PRESHAPE_RANGE)
+    for degrees in range(high, low - 1, -1):
+        angle = math.radians(degrees)
+        if hand.fingertip_reach(angle, spread) >= half_width + FLOWER_MARGIN:
+            return angle
+    return math.radians(low)
+
+
 def precision_grasp(estimate: ObjectEstimate) -> GraspPlan:
-    """Cylindrical mode, fingertips along the table: for thin, flat and small objects (module docstring).
+    """The flower grasp: fingertips landed on the table around the object, closed under a light force
+    of the compliant arm (module docstring).
 
     The palm faces down above the object's centre, its fingers closing across the shorter horizontal
-    side, at the height where the fingertips' deepest sweep passes `PRECISION_CLEARANCE` above the
-    table (`hand.fingertip_sweep_depth`), whatever the object's height: the fingertips meet it at its
-    foot. The approach still stops on contact (an object taller than that sweep stops the palm on
-    its top).
+    side. The fingers are preshaped to `flower_landing_angle`, and the palm's target puts their deepest
+    point `FLOWER_SINK` below the table, whatever the object's height: the guarded approach ends when
+    the tips touch the table (or the object's top, if it is wider than the hand opens).
     """
     R = np.asarray(estimate.R_WB, float)
     _, long_axis, _ = _top_face_axes(R, np.asarray(estimate.size, float))
     R_WP = _palm_rotation(_DOWN, R[:, long_axis])  # fingers close along the short side
     spread = ComplianceMode.CYLINDRICAL.spread
-    palm_z = estimate.table_height + hand.fingertip_sweep_depth(spread) + PRECISION_CLEARANCE
+    angle = flower_landing_angle(estimate.half_extent_along(R_WP.col(1)), spread)
+    palm_z = estimate.table_height + hand.fingertip_depth(angle, spread) - FLOWER_SINK
     target = np.array([estimate.center[0], estimate.center[1], palm_z], float)
-    return GraspPlan(GraspType.PRECISION, spread, RigidTransform(R_WP, target))
+    return GraspPlan(GraspType.PRECISION, spread, RigidTransform(R_WP, target),
+                     finger_preshape=(angle,) * 3 + (angle * hand.DISTAL_PER_PROXIMAL,) * 3, palm_force=FLOWER_FORCE)
 
 
 COMPLIANT_GRASPS = {

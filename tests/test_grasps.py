@@ -13,7 +13,10 @@ from drake_grasp.grasps import (
     ObjectEstimate,
     box_grasp,
     cylindrical_grasp,
-    PRECISION_CLEARANCE,
+    FLOWER_FORCE,
+    FLOWER_MARGIN,
+    FLOWER_PRESHAPE_RANGE,
+    FLOWER_SINK,
     oracle_estimate,
     planned_grasp,
     precision_grasp,
@@ -90,18 +93,37 @@ def _lowest_fingertip(plan):
                for f in (1, 2, 3) for p in np.linspace(0, hand.PROXIMAL_LIMITS[1], 141))
 
 
-@pytest.mark.parametrize("height", [0.008, 0.02, 0.06])
-def test_precision_grasp_sweeps_the_fingertips_along_the_table(height):
-    """Whatever the object's height, the fingertips' deepest sweep passes the precision clearance
-    above the table (2 mm), the palm above the centre, fingers across the short side."""
+@pytest.mark.parametrize("height, width", [(0.008, 0.06), (0.02, 0.03), (0.012, 0.012)])
+def test_the_flower_grasp_lands_the_fingertips_on_the_table_clear_of_the_object(height, width):
+    """The preshaped fingertips' deepest point is FLOWER_SINK below the table at the landing target,
+    their lowest centimetre lands FLOWER_MARGIN beyond the object's half-width, the palm is above the
+    centre with the fingers across the short side, and the arm presses while the hand closes."""
     yaw = math.radians(20)
-    plan = precision_grasp(_estimate([0.5, 0.05, height / 2], [0.10, 0.06, height], yaw=yaw))
+    plan = precision_grasp(_estimate([0.5, 0.05, height / 2], [0.10, width, height], yaw=yaw))
     assert plan.grasp == GraspType.PRECISION and plan.spread == ComplianceMode.CYLINDRICAL.spread
-    assert PRECISION_CLEARANCE - 1e-6 <= _lowest_fingertip(plan) <= PRECISION_CLEARANCE + 1e-3
+    assert plan.compliant_arm and plan.palm_force == FLOWER_FORCE
+    angle = plan.finger_preshape[0]
+    assert plan.finger_preshape == (angle,) * 3 + (angle / 3,) * 3
+    assert FLOWER_PRESHAPE_RANGE[0] <= angle <= FLOWER_PRESHAPE_RANGE[1]
+    assert hand.fingertip_reach(angle) >= width / 2 + FLOWER_MARGIN - 1e-9
+    if angle < FLOWER_PRESHAPE_RANGE[1]:  # the largest such angle: a degree more would land on it
+        assert hand.fingertip_reach(angle + math.radians(1)) < width / 2 + FLOWER_MARGIN
+    tip_z = plan.X_WP_target.translation()[2] - hand.fingertip_depth(angle)
+    assert tip_z == pytest.approx(-FLOWER_SINK, abs=1e-9)  # the table is at z = 0
     np.testing.assert_allclose(plan.X_WP_target.translation()[:2], [0.5, 0.05])
     np.testing.assert_allclose(np.abs(plan.X_WP_target.rotation().col(0) @ [math.cos(yaw), math.sin(yaw), 0]), 1.0)
     np.testing.assert_allclose(plan.X_WP_target.rotation().col(2), [0, 0, -1], atol=1e-12)
     assert GraspType.parse("Precision") == GraspType.PRECISION
+
+
+def test_the_fingertips_depth_and_reach_follow_the_coupled_closing():
+    """Closing past about 60 deg the tips rise and come nearer the closing plane (what the flower
+    grasp's palm follows down)."""
+    angles = np.radians([60, 70, 80, 90])
+    depths = [hand.fingertip_depth(a) for a in angles]
+    reaches = [hand.fingertip_reach(a) for a in angles]
+    assert all(a > b for a, b in zip(depths, depths[1:])) and all(a > b for a, b in zip(reaches, reaches[1:]))
+    assert 0.09 < depths[0] < 0.11  # the tips reach about 10 cm beyond the palm
 
 
 @pytest.mark.parametrize("grasp", [spherical_grasp, box_grasp, precision_grasp])

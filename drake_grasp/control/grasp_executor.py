@@ -8,6 +8,15 @@ estimated surface). The same executor runs the compliant grasps and the grasps p
 methods, so every method is executed by the same arm, controller and timings. Given no plan, it
 starts in GraspPhase.EXPLORE: the compliant-grasp supervisor (`control.supervisor`) is such a subclass,
 which decides the plan while the simulation runs.
+
+The arm has two modes. Held by position (the paper's, and every plan with `palm_force` 0), the
+executor's joint trajectory drives the station's joint PD throughout. A plan with a `palm_force`
+(the flower grasp) hands the arm to the palm's impedance law (`control.palm_impedance`) for the
+approach and the close: the approach's target pose slides down the approach line at the approach
+speed and the landing ends when the hand touches (the fingertips on the table); the close then holds
+the palm where it landed, across and in tilt, soft along its normal, and presses along it with the
+plan's force, ramped up over `FORCE_RAMP`. The lift takes the arm back to the joint PD from where it
+is (its measured joint angles), so the lift and the hold are the same as every other grasp's.
 """
 
 import dataclasses
@@ -22,9 +31,16 @@ from pydrake.multibody.tree import ModelInstanceIndex
 from pydrake.systems.framework import BasicVector, Context, DiagramBuilder, LeafSystem, State
 
 from drake_grasp.control.arm_motion import ArmKinematics, JointPath, ReachError
+from drake_grasp.control.palm_impedance import PalmImpedanceParams
 from drake_grasp.grasps import ABOUT_APPROACH, TURNED, GraspPlan, near_symmetric_alternatives
-from drake_grasp.robot.hand import HandAction
+from drake_grasp.robot import hand
+from drake_grasp.robot.hand import HAND_JOINTS, HandAction
 from drake_grasp.protocol import ExecutionTimes
+
+
+# How long the palm's force takes to rise from zero to the plan's at the start of the close, s: a step
+# in force would kick the palm off the table it just landed on.
+FORCE_RAMP = 0.2
 
 
 class GraspPhase(enum.IntEnum):
@@ -78,6 +94,7 @@ class _Progress:
         outcome: why the sequence ended before grasping (a trial's failure reason), or "".
         detail: more about the outcome (e.g. the pose the arm could not reach).
         decision: what the supervisor decided (see `supervisor.Decision`), or None.
+        palm_hold: the palm's pose where a compliant arm landed (the close's impedance target), or None.
     """
 
     phase: GraspPhase
@@ -90,6 +107,7 @@ class _Progress:
     outcome: str = ""
     detail: str = ""
     decision: object = None
+    palm_hold: RigidTransform | None = None
 
     def __deepcopy__(self, memo) -> "_Progress":
         """Itself. Drake copies the whole state at every plant step (unrestricted updates); an
@@ -109,13 +127,20 @@ class GraspExecutor(LeafSystem):
         hand.command: [spread, HandAction] for ``hand.command``.
         hand.finger_preshape: proximal angles (3) for ``hand.finger_preshape``.
         phase: the current GraspPhase, as a number.
+        wam.arm_mode (1): 1 while the palm's impedance law drives the arm (a plan with a palm force,
+            from the approach to the end of the close), else 0.
+        wam.palm_target: the impedance law's target pose X_WPd (RigidTransform).
+        wam.palm_force (1): its force along the palm normal, N.
+        wam.palm_stiffness (6): its stiffness per palm axis (the scenario's; zero along the normal
+            during the close, where the force alone presses).
 
     Raises (at construction): ReachError if the arm cannot reach the whole path (pre-grasp, approach,
     lift) of the plan nor of any of its near-symmetric equivalents (`plan_reachable_motion`).
     """
 
     def __init__(self, plant: MultibodyPlant, scene_graph: SceneGraph, wam: ModelInstanceIndex, hand_bodies: list,
-                 plan: GraspPlan | None, q_start: np.ndarray, times: ExecutionTimes):
+                 plan: GraspPlan | None, q_start: np.ndarray, times: ExecutionTimes,
+                 impedance: PalmImpedanceParams | None = None):
         """
         Args:
             plant, scene_graph, wam: the station's.
@@ -124,8 +149,11 @@ class GraspExecutor(LeafSystem):
                 in GraspPhase.EXPLORE, holding the arm at q_start, until it calls `_start_grasp`).
             q_start: the arm's joint angles at time 0, rad.
             times: the sequence's timings.
+            impedance: the palm impedance's gains (the scenario's `arm.impedance()`), for the
+                stiffness the executor hands the law.
         """
         super().__init__()
+        self._impedance = impedance or PalmImpedanceParams()
         self._inspector = scene_graph.model_inspector()
         self._body_of_geometry = {}  # GeometryId -> body index, filled as contacts come
         self._times = times
@@ -138,6 +166,11 @@ class GraspExecutor(LeafSystem):
             initial = self._start_grasp(initial, plan, q_start, 0.0)
 
         self._wam_state_port = self.DeclareVectorInputPort("wam.state", 14)
+        self._hand_state_port = self.DeclareVectorInputPort("hand.state", 2 * len(HAND_JOINTS.all))
+        # Where each proximal angle is in the hand's state vector.
+        hand_instance = plant.GetJointByName(HAND_JOINTS.proximal[0]).model_instance()
+        hand_rows = list(plant.GetPositionsFromArray(hand_instance, np.arange(plant.num_positions())).astype(int))
+        self._proximal_rows = [hand_rows.index(plant.GetJointByName(n).position_start()) for n in HAND_JOINTS.proximal]
         self._contact_results_port = self.DeclareAbstractInputPort(
             "contact_results", AbstractValue.Make(ContactResults()))
         self._progress_index = self.DeclareAbstractState(AbstractValue.Make(initial))
@@ -149,6 +182,13 @@ class GraspExecutor(LeafSystem):
         self.DeclareVectorOutputPort("hand.finger_preshape", 3, self._CalcPreshape,
                                      {self.abstract_state_ticket(self._progress_index)})
         self.DeclareVectorOutputPort("phase", 1, self._CalcPhase, {self.abstract_state_ticket(self._progress_index)})
+        progress_ticket = {self.abstract_state_ticket(self._progress_index)}
+        self.DeclareVectorOutputPort("wam.arm_mode", 1, self._CalcArmMode, progress_ticket)
+        self.DeclareAbstractOutputPort("wam.palm_target", lambda: AbstractValue.Make(RigidTransform()),
+                                       self._CalcPalmTarget, progress_ticket | {self.time_ticket(),
+                                                                              self._hand_state_port.ticket()})
+        self.DeclareVectorOutputPort("wam.palm_force", 1, self._CalcPalmForce, progress_ticket | {self.time_ticket()})
+        self.DeclareVectorOutputPort("wam.palm_stiffness", 6, self._CalcPalmStiffness, progress_ticket)
 
     def plan_motion(self, plan: GraspPlan, q_start: np.ndarray) -> GraspMotion:
         """The arm's motion for `plan` from joint angles q_start (raises ReachError if unreachable).
@@ -255,6 +295,57 @@ class GraspExecutor(LeafSystem):
     def _CalcPhase(self, context: Context, output: BasicVector) -> None:
         output.SetFromVector([float(self.progress(context).phase)])
 
+    @staticmethod
+    def _compliant(progress: _Progress) -> bool:
+        """Whether the palm's impedance law drives the arm now."""
+        motion = progress.motion
+        return (motion is not None and motion.plan.compliant_arm
+                and progress.phase in (GraspPhase.APPROACH, GraspPhase.CLOSE))
+
+    def _CalcArmMode(self, context: Context, output: BasicVector) -> None:
+        output.SetFromVector([1.0 if self._compliant(self.progress(context)) else 0.0])
+
+    def _CalcPalmTarget(self, context: Context, output: AbstractValue) -> None:
+        progress = self.progress(context)
+        motion = progress.motion
+        if progress.palm_hold is not None:
+            output.set_value(self._following_fingertips(context, progress))
+        elif motion is not None and progress.phase == GraspPhase.APPROACH:
+            # Down the approach line at the approach speed, from the pre-grasp pose to the target.
+            plan = motion.plan
+            travel = (context.get_time() - progress.phase_start) * self._times.approach_speed
+            s = min(1.0, travel / plan.approach_distance) if plan.approach_distance > 0 else 1.0
+            p = (1 - s) * plan.X_WP_pregrasp.translation() + s * plan.X_WP_target.translation()
+            output.set_value(RigidTransform(plan.X_WP_target.rotation(), p))
+        else:
+            output.set_value(self._kinematics.palm_pose(progress.trajectory.value(
+                min(context.get_time(), progress.trajectory.end_time())).ravel()))
+
+    def _following_fingertips(self, context: Context, progress: _Progress) -> RigidTransform:
+        """The close's palm target: where the palm landed, moved along its normal by as much as the
+        closing fingertips rise (`hand.fingertip_depth` at the fingers' mean proximal angle, against
+        the angle they landed at), so that tips that landed on the table stay on it. Without the
+        hand's state (an unconnected `hand.state`), where it landed."""
+        X = progress.palm_hold
+        if not self._hand_state_port.HasValue(context):
+            return X
+        plan = progress.motion.plan
+        landed = float(np.mean(plan.finger_preshape[:3]))
+        now = float(np.mean(np.asarray(self._hand_state_port.Eval(context))[self._proximal_rows]))
+        rise = hand.fingertip_depth(landed, plan.spread) - hand.fingertip_depth(max(now, landed), plan.spread)
+        return RigidTransform(X.rotation(), X.translation() + max(rise, 0.0) * X.rotation().col(2))
+
+    def _CalcPalmForce(self, context: Context, output: BasicVector) -> None:
+        progress = self.progress(context)
+        force = 0.0
+        if self._compliant(progress) and progress.phase == GraspPhase.CLOSE:
+            ramp = min(1.0, (context.get_time() - progress.phase_start) / FORCE_RAMP)
+            force = ramp * progress.motion.plan.palm_force
+        output.SetFromVector([force])
+
+    def _CalcPalmStiffness(self, context: Context, output: BasicVector) -> None:
+        output.SetFromVector(np.array(self._impedance.stiffness, float))
+
     # --- The state machine. -----------------------------------------------------------------------
 
     def _hand_contact_force(self, context: Context) -> float:
@@ -308,14 +399,25 @@ class GraspExecutor(LeafSystem):
             if done:
                 progress = dataclasses.replace(
                     progress, approach_travel=times.approach_speed * min(elapsed, motion.approach_duration))
+                if motion.plan.compliant_arm:  # hold the palm where it landed
+                    X_WP = self._kinematics.palm_pose(self._measured_q(context))
+                    progress = dataclasses.replace(progress, palm_hold=X_WP, approach_travel=float(np.dot(
+                        X_WP.translation() - motion.plan.X_WP_pregrasp.translation(),
+                        motion.plan.X_WP_target.rotation().col(2))))
                 progress = self._enter(progress, GraspPhase.CLOSE, t)
         elif progress.phase == GraspPhase.CLOSE and elapsed >= times.close_time:
-            progress = self._enter(progress, GraspPhase.LIFT, t)
+            # A compliant arm hands back to the joint PD where it is.
+            q_now = self._measured_q(context) if motion.plan.compliant_arm else None
+            progress = self._enter(dataclasses.replace(progress, palm_hold=None), GraspPhase.LIFT, t, q_now)
         elif progress.phase == GraspPhase.LIFT and elapsed >= times.lift_time:
             progress = self._enter(progress, GraspPhase.HOLD, t)
         elif progress.phase == GraspPhase.HOLD and elapsed >= times.hold_time:
             progress = self._enter(progress, GraspPhase.DONE, t)
         state.get_mutable_abstract_state(self._progress_index).set_value(progress)
+
+    def _measured_q(self, context: Context) -> np.ndarray:
+        """The arm's measured joint angles, rad."""
+        return np.asarray(self._wam_state_port.Eval(context), float)[:7].copy()
 
     def _Explore(self, context: Context, progress: _Progress) -> _Progress:
         """GraspPhase.EXPLORE's update: a subclass that decides the grasp while running overrides it."""
@@ -325,9 +427,11 @@ class GraspExecutor(LeafSystem):
         """Ends the sequence at time t without grasping, saying why; the arm holds still."""
         return dataclasses.replace(self._enter(progress, GraspPhase.DONE, t), outcome=outcome, detail=detail)
 
-    def _enter(self, progress: _Progress, phase: GraspPhase, t: float) -> _Progress:
-        """Switches to `phase` at time t, with the arm trajectory that phase follows."""
-        q_now = progress.trajectory.value(min(t, progress.trajectory.end_time())).ravel()
+    def _enter(self, progress: _Progress, phase: GraspPhase, t: float, q_now: np.ndarray | None = None) -> _Progress:
+        """Switches to `phase` at time t, with the arm trajectory that phase follows (from q_now, rad:
+        where the arm is; default: where the last trajectory left it)."""
+        if q_now is None:
+            q_now = progress.trajectory.value(min(t, progress.trajectory.end_time())).ravel()
         path = JointPath()
         motion = progress.motion
         if phase == GraspPhase.APPROACH:
@@ -352,8 +456,11 @@ def ConnectGraspExecutor(builder: DiagramBuilder, station_system, executor: Gras
     the arm's and the contacts' feedback in, the hand's commands out, and (with `arm`) the arm command."""
     builder.Connect(station_system.GetOutputPort("wam.state"), executor.GetInputPort("wam.state"))
     builder.Connect(station_system.GetOutputPort("contact_results"), executor.GetInputPort("contact_results"))
+    builder.Connect(station_system.GetOutputPort("hand.state"), executor.GetInputPort("hand.state"))
     builder.Connect(executor.GetOutputPort("hand.command"), station_system.GetInputPort("hand.command"))
     builder.Connect(executor.GetOutputPort("hand.finger_preshape"), station_system.GetInputPort("hand.finger_preshape"))
+    for name in ("wam.arm_mode", "wam.palm_target", "wam.palm_force", "wam.palm_stiffness"):
+        builder.Connect(executor.GetOutputPort(name), station_system.GetInputPort(name))
     if arm:
         builder.Connect(executor.GetOutputPort("wam.desired_state"), station_system.GetInputPort("wam.desired_state"))
 

@@ -256,3 +256,33 @@ def fingertip_sweep_depth(spread: float = 0.0, samples: int = 141) -> float:
             p = distal_points_in_base(finger, spread, proximal, proximal * DISTAL_PER_PROXIMAL, tip_edge)
             depth = max(depth, float(p[:, 2].max()) - PALM_HEIGHT)
     return depth
+
+
+@functools.lru_cache(maxsize=4096)
+def fingertip_depth(proximal: float, spread: float = 0.0) -> float:
+    """How far beyond the palm surface the lowest fingertip reaches in a free (coupled) closing at this
+    proximal angle (rad, rounded to 0.1 deg for the cache), m: the deepest point, along the palm normal,
+    of the three distal links at distal = proximal / 3. The flower grasp keeps the palm this far above
+    the table as its fingers close, so that the tips stay on the table."""
+    import numpy as np
+
+    proximal = round(float(proximal), 3)
+    points = distal_link_points()
+    return max(float(distal_points_in_base(f, spread, proximal, proximal * DISTAL_PER_PROXIMAL, points)[:, 2].max())
+               for f in FINGERS) - PALM_HEIGHT
+
+
+def fingertip_reach(proximal: float, spread: float = 0.0, band: float = 0.010) -> float:
+    """How near the palm's closing plane the fingertips' lowest `band` m comes at this coupled proximal
+    angle, m: the smallest distance, across the closing direction (the palm's y), of any distal-link
+    point within `band` of the deepest one. An object narrower than twice this, centred, is not under
+    the fingertips when they land."""
+    import numpy as np
+
+    points = distal_link_points()
+    reach = np.inf
+    for f in FINGERS:
+        p = distal_points_in_base(f, spread, proximal, proximal * DISTAL_PER_PROXIMAL, points)
+        low = p[p[:, 2] > p[:, 2].max() - band]
+        reach = min(reach, float(np.min(np.abs(low[:, 1]))))
+    return reach

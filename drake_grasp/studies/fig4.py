@@ -12,8 +12,9 @@ so an error along x runs along the axis and an error along y across it.
 
 The flower (beyond the paper's figure, which stops at the annulus): plates lying flat on a table
 (`objects.plate_object`: an 8 × 5 cm footprint, 4-40 mm thick, the thickness as their size), grasped
-with the precision grasp (`grasps.precision_grasp`: cylindrical mode, palm over the centre, the
-fingertips' deepest sweep 2 mm above the table) with the same position errors. They rest on the
+with the palm held by position over the centre (cylindrical mode, the fingertips' deepest sweep 2 mm
+above the table: the precision grasp that the flower grasp replaced; the quasi-static hand does not
+model the flower grasp's compliant arm) with the same position errors. They rest on the
 table, which stops the fingers like the object does; only contacts with the object count in ε.
 
 The sweep is resumable: each (shape, size) is one task, whose rows are appended to ``fig4.csv`` as
@@ -144,18 +145,31 @@ def hand_start_pose(spec, axis: str, error: float, clearance: float):
     return RigidTransform(R_OH, p_OH)
 
 
+# Fig. 4's flower palm height: the fingertips' deepest sweep this far above the table, m. The
+# quasi-static hand holds the palm by position, so the figure keeps the palm-held sweep of the
+# precision grasp that the flower grasp replaced (docs/design.md §5.4b); the flower grasp's compliant
+# arm, which follows the tips down the table, is not modelled here (§5.4f).
+POSITION_HELD_CLEARANCE = 0.002
+
+
 def precision_start_pose(spec, axis: str, error: float, clearance: float):
-    """X_OH: the hand base where the precision grasp puts it for the true pose (`grasps.precision_grasp`),
-    offset by `error` along the object's x or y and `clearance` back along the palm normal."""
+    """X_OH: the hand base with the palm level over the plate's centre, fingers across its short side,
+    at the height where the fingertips' deepest sweep passes POSITION_HELD_CLEARANCE above the table
+    (the palm held by position), offset by `error` along the object's x or y and `clearance` back
+    along the palm normal."""
     from pydrake.math import RigidTransform
 
     from drake_grasp.robot import hand
     from drake_grasp.grasps import oracle_estimate, precision_grasp
+    from drake_grasp.robot.hand import ComplianceMode
 
-    X_OP = precision_grasp(oracle_estimate(RigidTransform(), spec)).X_WP_target
+    estimate = oracle_estimate(RigidTransform(), spec)
+    X_OP = precision_grasp(estimate).X_WP_target  # its palm orientation and place over the centre
+    p = X_OP.translation().copy()
+    p[2] = estimate.table_height + hand.fingertip_sweep_depth(ComplianceMode.CYLINDRICAL.spread) + POSITION_HELD_CLEARANCE
+    X_OH = RigidTransform(X_OP.rotation(), p) @ RigidTransform([0.0, 0.0, -hand.PALM_HEIGHT - clearance])
     offset = np.zeros(3)
     offset["xy".index(axis)] = error
-    X_OH = X_OP @ RigidTransform([0.0, 0.0, -hand.PALM_HEIGHT - clearance])
     return RigidTransform(X_OH.rotation(), X_OH.translation() + offset)
 
 
