@@ -31,7 +31,7 @@ from pydrake.multibody.tree import ModelInstanceIndex
 from pydrake.systems.framework import BasicVector, Context, DiagramBuilder, LeafSystem, State
 
 from drake_grasp.control.arm_motion import ArmKinematics, JointPath, ReachError
-from drake_grasp.control.palm_impedance import PalmImpedanceParams
+from drake_grasp.control.hand_controller import HandIndexing
 from drake_grasp.grasps import ABOUT_APPROACH, TURNED, GraspPlan, near_symmetric_alternatives
 from drake_grasp.robot import hand
 from drake_grasp.robot.hand import HAND_JOINTS, HandAction
@@ -131,16 +131,13 @@ class GraspExecutor(LeafSystem):
             from the approach to the end of the close), else 0.
         wam.palm_target: the impedance law's target pose X_WPd (RigidTransform).
         wam.palm_force (1): its force along the palm normal, N.
-        wam.palm_stiffness (6): its stiffness per palm axis (the scenario's; zero along the normal
-            during the close, where the force alone presses).
 
     Raises (at construction): ReachError if the arm cannot reach the whole path (pre-grasp, approach,
     lift) of the plan nor of any of its near-symmetric equivalents (`plan_reachable_motion`).
     """
 
     def __init__(self, plant: MultibodyPlant, scene_graph: SceneGraph, wam: ModelInstanceIndex, hand_bodies: list,
-                 plan: GraspPlan | None, q_start: np.ndarray, times: ExecutionTimes,
-                 impedance: PalmImpedanceParams | None = None):
+                 plan: GraspPlan | None, q_start: np.ndarray, times: ExecutionTimes):
         """
         Args:
             plant, scene_graph, wam: the station's.
@@ -149,11 +146,8 @@ class GraspExecutor(LeafSystem):
                 in GraspPhase.EXPLORE, holding the arm at q_start, until it calls `_start_grasp`).
             q_start: the arm's joint angles at time 0, rad.
             times: the sequence's timings.
-            impedance: the palm impedance's gains (the scenario's `arm.impedance()`), for the
-                stiffness the executor hands the law.
         """
         super().__init__()
-        self._impedance = impedance or PalmImpedanceParams()
         self._inspector = scene_graph.model_inspector()
         self._body_of_geometry = {}  # GeometryId -> body index, filled as contacts come
         self._times = times
@@ -167,10 +161,7 @@ class GraspExecutor(LeafSystem):
 
         self._wam_state_port = self.DeclareVectorInputPort("wam.state", 14)
         self._hand_state_port = self.DeclareVectorInputPort("hand.state", 2 * len(HAND_JOINTS.all))
-        # Where each proximal angle is in the hand's state vector.
-        hand_instance = plant.GetJointByName(HAND_JOINTS.proximal[0]).model_instance()
-        hand_rows = list(plant.GetPositionsFromArray(hand_instance, np.arange(plant.num_positions())).astype(int))
-        self._proximal_rows = [hand_rows.index(plant.GetJointByName(n).position_start()) for n in HAND_JOINTS.proximal]
+        self._hand_index = HandIndexing(plant, plant.GetJointByName(HAND_JOINTS.proximal[0]).model_instance())
         self._contact_results_port = self.DeclareAbstractInputPort(
             "contact_results", AbstractValue.Make(ContactResults()))
         self._progress_index = self.DeclareAbstractState(AbstractValue.Make(initial))
@@ -188,7 +179,6 @@ class GraspExecutor(LeafSystem):
                                        self._CalcPalmTarget, progress_ticket | {self.time_ticket(),
                                                                               self._hand_state_port.ticket()})
         self.DeclareVectorOutputPort("wam.palm_force", 1, self._CalcPalmForce, progress_ticket | {self.time_ticket()})
-        self.DeclareVectorOutputPort("wam.palm_stiffness", 6, self._CalcPalmStiffness, progress_ticket)
 
     def plan_motion(self, plan: GraspPlan, q_start: np.ndarray) -> GraspMotion:
         """The arm's motion for `plan` from joint angles q_start (raises ReachError if unreachable).
@@ -331,7 +321,8 @@ class GraspExecutor(LeafSystem):
             return X
         plan = progress.motion.plan
         landed = float(np.mean(plan.finger_preshape[:3]))
-        now = float(np.mean(np.asarray(self._hand_state_port.Eval(context))[self._proximal_rows]))
+        angles = self._hand_index.joint_positions(self._hand_state_port.Eval(context))
+        now = float(np.mean([angles[HAND_JOINTS.all.index(name)] for name in HAND_JOINTS.proximal]))
         rise = hand.fingertip_depth(landed, plan.spread) - hand.fingertip_depth(max(now, landed), plan.spread)
         return RigidTransform(X.rotation(), X.translation() + max(rise, 0.0) * X.rotation().col(2))
 
@@ -342,9 +333,6 @@ class GraspExecutor(LeafSystem):
             ramp = min(1.0, (context.get_time() - progress.phase_start) / FORCE_RAMP)
             force = ramp * progress.motion.plan.palm_force
         output.SetFromVector([force])
-
-    def _CalcPalmStiffness(self, context: Context, output: BasicVector) -> None:
-        output.SetFromVector(np.array(self._impedance.stiffness, float))
 
     # --- The state machine. -----------------------------------------------------------------------
 
@@ -459,7 +447,7 @@ def ConnectGraspExecutor(builder: DiagramBuilder, station_system, executor: Gras
     builder.Connect(station_system.GetOutputPort("hand.state"), executor.GetInputPort("hand.state"))
     builder.Connect(executor.GetOutputPort("hand.command"), station_system.GetInputPort("hand.command"))
     builder.Connect(executor.GetOutputPort("hand.finger_preshape"), station_system.GetInputPort("hand.finger_preshape"))
-    for name in ("wam.arm_mode", "wam.palm_target", "wam.palm_force", "wam.palm_stiffness"):
+    for name in ("wam.arm_mode", "wam.palm_target", "wam.palm_force"):
         builder.Connect(executor.GetOutputPort(name), station_system.GetInputPort(name))
     if arm:
         builder.Connect(executor.GetOutputPort("wam.desired_state"), station_system.GetInputPort("wam.desired_state"))

@@ -307,7 +307,7 @@ class HandController(LeafSystem):
                  params: HandControllerParams | None = None):
         super().__init__()
         self._params = params or HandControllerParams()
-        self._index = _HandIndexing(plant, hand_instance)
+        self._index = HandIndexing(plant, hand_instance)
         num_q = plant.num_positions(hand_instance)
         num_v = plant.num_velocities(hand_instance)
         self._command_port = self.DeclareVectorInputPort("command", 2)
@@ -375,8 +375,9 @@ class HandController(LeafSystem):
         return self._index.to_actuator_order(joints), drive[_BROKEN:_ANGLE + F]
 
 
-class _HandIndexing:
-    """Maps the controller's joint order (HAND_JOINTS.all) to the plant's per-instance orders."""
+class HandIndexing:
+    """Maps the controller's joint order (HAND_JOINTS.all) to the plant's per-instance orders (the hand
+    controller's, and the grasp executor's reading of the proximal angles)."""
 
     def __init__(self, plant: MultibodyPlant, hand_instance: ModelInstanceIndex):
         joints = [plant.GetJointByName(name, hand_instance) for name in HAND_JOINTS.all]

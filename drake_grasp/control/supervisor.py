@@ -99,7 +99,7 @@ class CompliantGraspSupervisor(GraspExecutor):
     def __init__(self, plant, scene_graph, wam, hand_bodies: list, q_start: np.ndarray, times: ExecutionTimes,
                  arm_sources: tuple[InputPortIndex, InputPortIndex], forced_grasp: str | None = None,
                  estimate_error: EstimateError | None = None, grasp_search: FunnelParams | None = None,
-                 exclude: tuple = (), impedance=None):
+                 exclude: tuple = ()):
         """
         Args:
             plant, scene_graph, wam, hand_bodies, times: as GraspExecutor's.
@@ -111,13 +111,12 @@ class CompliantGraspSupervisor(GraspExecutor):
             grasp_search: the funnel search's choices (`funnel.search`; it reads `height_map`); None:
                 each grasp at its primitive's pose, as the paper.
             exclude: grasps that already failed on this object (a later attempt: `trial.attempts`).
-            impedance: the palm impedance's gains (as GraspExecutor's).
         """
         self._estimate_error = estimate_error
         self._exclude = tuple(exclude)
         self._grasp_search = grasp_search
         self._arm_sources = arm_sources
-        super().__init__(plant, scene_graph, wam, hand_bodies, None, q_start, times, impedance)
+        super().__init__(plant, scene_graph, wam, hand_bodies, None, q_start, times)
         self._phase_port = self.DeclareVectorInputPort("exploration_phase", 1)
         self._estimate_port = self.DeclareAbstractInputPort(
             "object_estimate", AbstractValue.Make(ObjectEstimate(status=OBJECT_NOT_FOUND)))
@@ -210,8 +209,7 @@ def AddCompliantGraspSupervisor(builder: DiagramBuilder, station, primitives, se
     plant = station.plant
     supervisor = builder.AddNamedSystem("supervisor", CompliantGraspSupervisor(
         plant, station.scene_graph, station.wam, plant.GetBodyIndices(station.hand), q_start, times,
-        (camera_port.get_index(), grasp_port.get_index()), forced_grasp, estimate_error, grasp_search, exclude,
-        station.scenario.arm.impedance()))
+        (camera_port.get_index(), grasp_port.get_index()), forced_grasp, estimate_error, grasp_search, exclude))
     builder.Connect(primitives.camera_motion.GetOutputPort("wam.desired_state"), camera_port)
     builder.Connect(supervisor.GetOutputPort("wam.desired_state"), grasp_port)
     builder.Connect(supervisor.GetOutputPort("arm_source"), switch.get_port_selector_input_port())

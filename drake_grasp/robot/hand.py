@@ -238,6 +238,18 @@ def distal_link_points():
     return np.array(points)
 
 
+def closing_distal_points(proximal: float, spread: float = 0.0) -> list:
+    """Each finger's distal-link shape (`distal_link_points`) in the hand base frame at a free
+    (coupled) closing, distal = proximal / 3 (m): one (N, 3) array per finger of FINGERS."""
+    points = distal_link_points()
+    return [distal_points_in_base(f, spread, proximal, proximal * DISTAL_PER_PROXIMAL, points) for f in FINGERS]
+
+
+def _deepest(proximal: float, spread: float) -> float:
+    """How far beyond the palm surface the distal links reach at this coupled proximal angle, m."""
+    return max(float(p[:, 2].max()) for p in closing_distal_points(proximal, spread)) - PALM_HEIGHT
+
+
 @functools.lru_cache(maxsize=32)
 def fingertip_sweep_depth(spread: float = 0.0, samples: int = 141) -> float:
     """How far beyond the palm surface the fingers reach while closing in the coupled phase, m.
@@ -249,29 +261,18 @@ def fingertip_sweep_depth(spread: float = 0.0, samples: int = 141) -> float:
     """
     import numpy as np
 
-    tip_edge = distal_link_points()
-    depth = 0.0
-    for proximal in np.linspace(PROXIMAL_LIMITS[0], PROXIMAL_LIMITS[1], samples):
-        for finger in FINGERS:
-            p = distal_points_in_base(finger, spread, proximal, proximal * DISTAL_PER_PROXIMAL, tip_edge)
-            depth = max(depth, float(p[:, 2].max()) - PALM_HEIGHT)
-    return depth
+    return max(0.0, *(_deepest(p, spread) for p in np.linspace(PROXIMAL_LIMITS[0], PROXIMAL_LIMITS[1], samples)))
 
 
 @functools.lru_cache(maxsize=4096)
 def fingertip_depth(proximal: float, spread: float = 0.0) -> float:
     """How far beyond the palm surface the lowest fingertip reaches in a free (coupled) closing at this
-    proximal angle (rad, rounded to 0.1 deg for the cache), m: the deepest point, along the palm normal,
-    of the three distal links at distal = proximal / 3. The flower grasp keeps the palm this far above
-    the table as its fingers close, so that the tips stay on the table."""
-    import numpy as np
-
-    proximal = round(float(proximal), 3)
-    points = distal_link_points()
-    return max(float(distal_points_in_base(f, spread, proximal, proximal * DISTAL_PER_PROXIMAL, points)[:, 2].max())
-               for f in FINGERS) - PALM_HEIGHT
+    proximal angle (rad, rounded to a milliradian for the cache), m. The flower grasp keeps the palm
+    this far above the table as its fingers close, so that the tips stay on the table."""
+    return _deepest(round(float(proximal), 3), spread)
 
 
+@functools.lru_cache(maxsize=512)
 def fingertip_reach(proximal: float, spread: float = 0.0, band: float = 0.010) -> float:
     """How near the palm's closing plane the fingertips' lowest `band` m comes at this coupled proximal
     angle, m: the smallest distance, across the closing direction (the palm's y), of any distal-link
@@ -279,10 +280,8 @@ def fingertip_reach(proximal: float, spread: float = 0.0, band: float = 0.010) -
     the fingertips when they land."""
     import numpy as np
 
-    points = distal_link_points()
     reach = np.inf
-    for f in FINGERS:
-        p = distal_points_in_base(f, spread, proximal, proximal * DISTAL_PER_PROXIMAL, points)
+    for p in closing_distal_points(proximal, spread):
         low = p[p[:, 2] > p[:, 2].max() - band]
         reach = min(reach, float(np.min(np.abs(low[:, 1]))))
     return reach

@@ -44,7 +44,7 @@ def run_trial(scenario: Scenario, spec: ObjectSpec, plan_function: PlanFunction,
         try:
             plan = plan_function(station.X_WO_nominal(), spec)
             executor = GraspExecutor(plant, station.scene_graph, station.wam, plant.GetBodyIndices(station.hand),
-                                     plan, q_start, protocol.execution, scenario.arm.impedance())
+                                     plan, q_start, protocol.execution)
         except ReachError as e:
             record.failure, record.detail = UNREACHABLE, str(e)
             return None
