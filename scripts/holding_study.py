@@ -1,13 +1,15 @@
 """How often the plain command holds what users bring: per class, at the first attempt and within N.
 
-Generated novel objects (`drake-grasp objects generate`: blobs, unions, plates, L and T shapes, rings
-and handles) of a generator seed, each through the compliance-centric algorithm's own choice (camera
+Generated objects of a generator seed: the novel classes (`--objects novel`, `drake-grasp objects
+generate`: blobs, unions, plates, L and T shapes, rings and handles) or everyday ones (`--objects
+everyday`, `objects.everyday`: polycubes, scans, mugs, bottles and boxes, every second one a URDF with
+a placeholder inertia), each through the compliance-centric algorithm's own choice (camera
 only) with `--attempts N`, under each scenario named (the "before" and "after" columns: e.g. the
 table-top estimate alone, and the funnel search), over trial seeds. The first attempt's outcome is the
 paper's protocol; within N counts a hold at any attempt (`trial.attempts`). Resumable (the sweeps'
 runner: rerun the same command to go on).
 
-Run: .venv/bin/python scripts/holding_study.py --count 14 --seed 9001 --seeds 1,2 --attempts 3
+Run: .venv/bin/python scripts/holding_study.py [--objects everyday] --count 14 --seed 9001 --seeds 1,2 --attempts 3
      --scenarios table_top,funnel --workers 2 --out out/holding [--report docs/results/holding.md]
 """
 
@@ -26,6 +28,7 @@ from drake_grasp.sweeps.stats import short_rate
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--objects", choices=("novel", "everyday"), default="novel", help="which generator")
     parser.add_argument("--count", type=int, default=14, help="generated objects (the classes in turn)")
     parser.add_argument("--seed", type=int, default=9001, help="the generator's seed")
     parser.add_argument("--seeds", default="1,2", help="trial seeds, comma-separated")
@@ -39,7 +42,14 @@ def main() -> int:
     seeds = [int(s) for s in args.seeds.split(",")]
     scenarios = args.scenarios.split(",")
     start = time.perf_counter()
-    objects = ensure_objects(out / "objects", args.count, args.seed)
+    if args.objects == "novel":
+        objects = ensure_objects(out / "objects", args.count, args.seed)
+    else:
+        from drake_grasp.objects import everyday
+        from drake_grasp.sweeps.results import ensure_generated
+
+        objects = ensure_generated(out / "objects", lambda staging: everyday.generate(args.count, args.seed, staging),
+                                   args.count, (args.seed,))
     specs = [TrialSpec(str(o["file"]), "compliant", "", s, scenario_name=n, attempts=args.attempts)
              for n in scenarios for o in objects for s in seeds]
     rows = run_trials(specs, out / "trials.csv", executor=LocalExecutor(args.workers), label="holding")
@@ -66,8 +76,8 @@ def main() -> int:
         chose[spec.scenario_name][(attempts[0]["grasp"] if attempts else r["grasp"]) or "-"] += 1
         tries[spec.scenario_name].append(len(attempts) or 1)
     classes = sorted({c for _, c in counts} - {"all"}) + ["all"]
-    lines = [f"# Holding what users bring: generated objects, first attempt and within {args.attempts}", "",
-             f"`scripts/holding_study.py --count {args.count} --seed {args.seed} --seeds {args.seeds} "
+    lines = [f"# Holding what users bring: generated {args.objects} objects, first attempt and within {args.attempts}",
+             "", f"`scripts/holding_study.py --objects {args.objects} --count {args.count} --seed {args.seed} --seeds {args.seeds} "
              f"--attempts {args.attempts} --scenarios {args.scenarios}`: {len(objects)} objects of generator seed "
              f"{args.seed}, trial seeds {args.seeds}, the algorithm's own choice (camera only), "
              f"{len(rows)} trials in {wall / 60:.0f} min on {args.workers} workers.", "",

@@ -11,11 +11,14 @@ def add_objects(sub) -> None:
     objects_sub = objects_cmd.add_subparsers(dest="objects_command", metavar="ACTION", required=True)
     generate = objects_sub.add_parser(
         "generate",
-        help="write N novel watertight meshes (metres) and a manifest",
-        description="Writes N watertight OBJ meshes in metres (classes in turn: non-convex blobs, unions "
-        "of boxes/cylinders/ellipsoids, thin plates, L and T shapes, rings, handles; largest extent "
-        "3-25 cm) and manifest.json / manifest.csv. The same --seed gives byte-identical files.",
+        help="write N generated test objects (metres) and a manifest",
+        description="Writes N watertight objects in metres and manifest.json / manifest.csv. --kind novel "
+        "(default): OBJ meshes, classes in turn: non-convex blobs, unions of boxes/cylinders/ellipsoids, "
+        "thin plates, L and T shapes, rings, handles; largest extent 3-25 cm. --kind everyday: what "
+        "users bring: polycubes, scans, mugs, bottles and boxes, every second one a URDF naming its mesh "
+        "with a placeholder inertia. The same --seed gives byte-identical files.",
     )
+    generate.add_argument("--kind", choices=("novel", "everyday"), default="novel", help="which generator (default novel)")
     generate.add_argument("--count", type=int, required=True, metavar="N", help="how many objects")
     generate.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
     generate.add_argument("--out", required=True, metavar="DIR", help="directory for the meshes and manifest")
@@ -25,18 +28,19 @@ def add_objects(sub) -> None:
 
 
 def _run_objects_generate(args) -> int:
-    from drake_grasp.objects import novel
+    from drake_grasp.objects import everyday, novel
 
     check_seed(args.seed)
     if args.count < 1:
         raise UsageError(f"--count must be >= 1, got {args.count}")
     out = check_out_dir(args.out)
-    rows = novel.generate(args.count, args.seed, out)
+    rows = (novel if args.kind == "novel" else everyday).generate(args.count, args.seed, out)
     if args.json:
         print(json.dumps({"out": str(out), "objects": rows}))
     else:
         classes = sorted({r["class"] for r in rows})
-        print(f"objects generate: {len(rows)} meshes ({', '.join(classes)}) in {out}; {out / 'manifest.json'}")
+        print(f"objects generate: {len(rows)} {args.kind} objects ({', '.join(classes)}) in {out}; "
+              f"{out / 'manifest.json'}")
     return 0
 
 

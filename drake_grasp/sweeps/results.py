@@ -350,19 +350,20 @@ def ensure_generated(directory: pathlib.Path, generate, expected: int, seeds: tu
     (a deterministic generator writing its files, manifest.csv and manifest.json into `staging`,
     returning the manifest rows) runs in a private folder and the files are moved into place one by
     one, the manifest last: an interrupted generation leaves no torn file and no manifest that
-    promises a missing one. Returns the manifest rows, "file" as a path in `directory`."""
+    promises a missing one. A row's "assets" (files its "file" names, such as a URDF's mesh) move
+    with it. Returns the manifest rows, "file" as a path in `directory`."""
     import shutil
 
     directory.mkdir(parents=True, exist_ok=True)
     manifest = directory / "manifest.json"
     rows = json.loads(manifest.read_text()) if manifest.is_file() else None
     fresh = (rows is not None and len(rows) == expected and all(r["seed"] in seeds for r in rows)
-             and all((directory / r["file"]).is_file() for r in rows))
+             and all((directory / f).is_file() for r in rows for f in [r["file"], *r.get("assets", ())]))
     if not fresh:
         staging = pathlib.Path(tempfile.mkdtemp(dir=directory, prefix=".generating."))
         try:
             rows = generate(staging)
-            for name in [r["file"] for r in rows] + ["manifest.csv"]:
+            for name in [f for r in rows for f in [*r.get("assets", ()), r["file"]]] + ["manifest.csv"]:
                 (staging / name).replace(directory / name)
             write_atomically(manifest, (staging / "manifest.json").read_text())
         finally:
