@@ -42,3 +42,19 @@ def test_fig6_chooses_by_the_same_rule_on_mean_resemblances():
     assert chosen_grasp(stats) == "precision"
     stats["precision"] = GraspStats(2, 2, 0.3)
     assert chosen_grasp(stats) == "box"
+
+
+def test_a_standing_bottle_is_upright_and_takes_the_cylindrical_grasp_after_flatness():
+    from drake_grasp.grasps import GRASP_OF_SHAPE
+    from drake_grasp.primitives.upright import upright_resemblance
+
+    bottle = upright_resemblance(0.20, [0.07, 0.07])  # 20 cm tall, 7 cm across
+    mug = upright_resemblance(0.09, [0.09, 0.08])
+    carton = upright_resemblance(0.25, [0.15, 0.06])  # standing, but wider than the hand wraps
+    assert bottle > 0.99 and mug < 0.01 and carton < 0.01
+    assert math.isnan(upright_resemblance(math.nan, [0.07, 0.07]))
+    res = {"sphere": 0.0, "cylinder": 0.0, "box": 1.0, "flat": 0.0, "upright": bottle}
+    assert choose_shape(res) == "upright" and GRASP_OF_SHAPE["upright"] == "cylindrical"
+    assert decision_margin(res) == pytest.approx(min(1.0, 2 * (bottle - 0.5)))
+    assert choose_shape({**res, "flat": 0.9}) == "flat"  # a small flat object stays the flower's
+    assert choose_shape(res, exclude=("upright",)) == "box"  # the cylindrical grasp failed: tried again

@@ -7,6 +7,7 @@ import pytest
 from pydrake.math import RigidTransform, RollPitchYaw, RotationMatrix
 
 from drake_grasp.robot import hand
+from drake_grasp import grasps
 from drake_grasp.grasps import (
     TABLE_CLEARANCE,
     GraspType,
@@ -53,11 +54,17 @@ def test_cylindrical_grasp_closes_across_the_principal_axis():
     np.testing.assert_allclose(plan.X_WP_target.translation(), [0.5, 0.0, 0.25], atol=1e-12)
 
 
-def test_cylindrical_grasp_of_a_standing_cylinder_comes_from_the_side():
-    plan = cylindrical_grasp(_estimate([0.5, 0.0, 0.15], [0.1, 0.1, 0.3], axis=[0, 0, 1]))
-    z = plan.X_WP_target.rotation().col(2)
-    assert abs(z[2]) < 1e-9  # horizontal approach
-    np.testing.assert_allclose(plan.X_WP_target.rotation().col(0), [0, 0, 1], atol=1e-12)
+def test_cylindrical_grasp_of_a_standing_cylinder_comes_from_the_arm_s_side_dipping():
+    # A 30 cm cylinder standing 0.5 m out along the world's y from the arm's base (at the origin).
+    plan = cylindrical_grasp(_estimate([0.0, 0.5, 0.15], [0.1, 0.1, 0.3], axis=[0, 0, 1]))
+    R, p = plan.X_WP_target.rotation(), plan.X_WP_target.translation()
+    dip = grasps.UPRIGHT_APPROACH_DIP
+    np.testing.assert_allclose(R.col(2), [0, math.cos(dip), -math.sin(dip)], atol=1e-12)  # outward and down
+    np.testing.assert_allclose(R.col(0), [0, math.sin(dip), math.cos(dip)], atol=1e-12)  # spread line: up the axis
+    # The approach line runs through the axis at UPRIGHT_AIM_HEIGHT of the height, the palm 5 cm back
+    # (the half-width along the level direction) from it along the approach.
+    aim = np.array([0.0, 0.5, grasps.UPRIGHT_AIM_HEIGHT * 0.3])
+    np.testing.assert_allclose(p, aim - 0.05 * R.col(2), atol=1e-12)
 
 
 def test_box_grasp_stands_off_a_face_wider_than_the_knuckles():

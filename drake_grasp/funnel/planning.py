@@ -27,7 +27,7 @@ from drake_grasp.funnel.observed_shape import observed_shape
 from drake_grasp.funnel.params import FunnelParams
 from drake_grasp.funnel.search import FunnelSearch, search
 from drake_grasp.grasps import GRASP_OF_SHAPE, GraspPlan, GraspType, near_symmetric_alternatives, plan_compliant_grasp
-from drake_grasp.primitives.decision import choose_shape, choose_with_funnels
+from drake_grasp.primitives.decision import FLAT, UPRIGHT, choose_shape, choose_with_funnels
 from drake_grasp.primitives.scores import SHAPES
 from drake_grasp.primitives.table_top import HeightMap
 
@@ -73,9 +73,12 @@ def choose_grasp(estimate, grasp_estimate, forced: str | None = None, params: Fu
     """
     resemblances = dict(estimate.resemblances)
     excluded = tuple(shape for shape, grasp in GRASP_OF_SHAPE.items() if grasp in exclude)
-    paper_choice = GRASP_OF_SHAPE[choose_shape(resemblances, excluded)]
+    shape = choose_shape(resemblances, excluded)
+    paper_choice = GRASP_OF_SHAPE[shape]
+    if shape == UPRIGHT and (forced or paper_choice) == GraspType.CYLINDRICAL.value:
+        grasp_estimate = dataclasses.replace(grasp_estimate, principal_axis=np.array([0.0, 0.0, 1.0]))
     found = None
-    if params is not None and height_map is not None and paper_choice != GraspType.PRECISION.value:
+    if params is not None and height_map is not None and shape not in (FLAT, UPRIGHT):
         found = _search(grasp_estimate, params, height_map, _uncertainty_centre(estimate))
     if found is None:
         executed = forced or paper_choice

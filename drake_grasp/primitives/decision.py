@@ -10,17 +10,23 @@ known table), so it decides first:
 
 1. **flat** when the flat resemblance is at least `FLAT_THRESHOLD` (1/2: the object is thinner than
    2.5 cm or smaller than 7 cm, the middle of its logistic steps);
-2. otherwise the paper's argmax over sphere, cylinder and box;
-3. with the funnel search (`funnel.search`, a scenario's `perception.grasp_search`): a grasp whose
+2. **upright** when the upright resemblance (`primitives.upright`, also from the table-top estimate)
+   is at least `UPRIGHT_THRESHOLD` (1/2: standing more than 1.8 times as tall as its footprint is
+   wide, and narrower than the hand wraps): the cylindrical grasp round the vertical axis, from the
+   arm's side (`grasps.cylindrical_grasp`). Like flatness, it is a measured shape that the
+   silhouettes' box resemblance saturates on;
+3. otherwise the paper's argmax over sphere, cylinder and box;
+4. with the funnel search (`funnel.search`, a scenario's `perception.grasp_search`): a grasp whose
    funnel on the shape the camera saw is empty (ε = 0 at every pose scored) is not chosen when another's
    is not; the most resembling of those with a funnel is (`choose_with_funnels`). The paper's argmax
-   stands whenever its grasp has a funnel, or no grasp has one. Step 1 keeps precedence: a plate gives
-   ε = 0 to every grasp quasi-statically, so no funnel vetoes the flat choice.
+   stands whenever its grasp has a funnel, or no grasp has one. Steps 1 and 2 keep precedence: a plate
+   gives ε = 0 to every grasp quasi-statically, so no funnel vetoes the flat choice, and the search's
+   variants are of grasps from above, not the upright grasp's.
 
-The *margin* says how clear the decision was, in [0, 1]: in step 2, the lead of the best resemblance
+The *margin* says how clear the decision was, in [0, 1]: in step 3, the lead of the best resemblance
 over the next; a flat resemblance near its threshold makes any decision close, so its own distance
-from the threshold, 2 |flat - 1/2|, bounds the margin from above. Without a flat resemblance (the
-paper's perception), both are the paper's argmax and its lead.
+from the threshold, 2 |flat - 1/2|, bounds the margin from above, and so does the upright one's.
+Without those resemblances (the paper's perception), both are the paper's argmax and its lead.
 """
 
 import math
@@ -28,8 +34,10 @@ import math
 from drake_grasp.primitives.scores import SHAPES
 
 FLAT = "flat"
-CHOICES = SHAPES + (FLAT,)
+UPRIGHT = "upright"
+CHOICES = SHAPES + (FLAT, UPRIGHT)
 FLAT_THRESHOLD = 0.5
+UPRIGHT_THRESHOLD = 0.5
 
 
 def _value(resemblances: dict, shape: str) -> float:
@@ -48,6 +56,9 @@ def choose_shape(resemblances: dict, exclude=()) -> str | None:
     flat = _value(resemblances, FLAT)
     if FLAT not in exclude and math.isfinite(flat) and flat >= FLAT_THRESHOLD:
         return FLAT
+    upright = _value(resemblances, UPRIGHT)
+    if UPRIGHT not in exclude and math.isfinite(upright) and upright >= UPRIGHT_THRESHOLD:
+        return UPRIGHT
     shapes = [s for s in SHAPES if s not in exclude] or list(SHAPES)
     return max(shapes, key=lambda s: resemblances.get(s, -1.0))
 
@@ -64,7 +75,15 @@ def decision_margin(resemblances: dict) -> float:
     if not math.isfinite(flat):
         return math.nan
     flat_margin = 2.0 * abs(flat - FLAT_THRESHOLD)
-    return flat_margin if flat >= FLAT_THRESHOLD else min(lead, flat_margin)
+    if flat >= FLAT_THRESHOLD:
+        return flat_margin
+    upright = _value(resemblances, UPRIGHT)
+    if not math.isfinite(upright):
+        return min(lead, flat_margin)
+    upright_margin = 2.0 * abs(upright - UPRIGHT_THRESHOLD)
+    if upright >= UPRIGHT_THRESHOLD:
+        return min(flat_margin, upright_margin)
+    return min(lead, flat_margin, upright_margin)
 
 
 def choose_with_funnels(resemblances: dict, empty: dict, exclude=()) -> str | None:
@@ -76,7 +95,7 @@ def choose_with_funnels(resemblances: dict, empty: dict, exclude=()) -> str | No
         exclude: as `choose_shape`'s.
     """
     chosen = choose_shape(resemblances, exclude)
-    if chosen is None or chosen == FLAT or not empty.get(chosen, False):
+    if chosen is None or chosen in (FLAT, UPRIGHT) or not empty.get(chosen, False):
         return chosen
     open_shapes = [s for s in SHAPES if s in empty and not empty[s] and s not in exclude]
     if not open_shapes:

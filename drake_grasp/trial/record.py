@@ -80,7 +80,8 @@ class TrialRecord:
                 if math.isfinite(self.slip_distance) else "no hold")
         lift = f"lift {self.lift * 100:.1f} cm" if math.isfinite(self.lift) else "no lift"
         estimator = self.estimate.get("estimator")
-        seen = f" ({estimator} estimate)" if estimator else ""
+        searched = ", funnel search" if self.grasp_search else ""
+        seen = f" ({estimator} estimate{searched})" if estimator else ""
         if len(self.attempts) > 1:
             tried = ", ".join(f"{a['grasp'] or '-'} {'held' if a['success'] else a['failure']}" for a in self.attempts)
             verdict = f"{verdict} after {len(self.attempts)} attempts ({tried})"

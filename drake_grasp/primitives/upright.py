@@ -1,0 +1,46 @@
+"""The upright resemblance: how much an object stands on the table like a bottle, taller than wide.
+
+The paper's cylinder resemblance recognises a cylinder lying down: from above its silhouette is a
+rectangle whose length stays as the camera arcs along it. A bottle standing up shows a disc from above,
+and the silhouettes' area varies as the camera tilts down its side, so the box resemblance saturates
+on it (1.0 on every standing bottle measured) and the box grasp closes on its neck and cap, which slip
+out during the lift (docs/results/holding_everyday.md). What tells a standing bottle apart is a
+measured shape, not a likeness of silhouettes: the table-top estimate's height above the table against
+its footprint, as for the flat resemblance (`primitives.flat`).
+
+The resemblance is a logistic step up in the ratio of the height to the footprint's larger side, 1/2 at
+`UPRIGHT_RATIO` (1.8: the everyday generator's bottles stand 2-5 times as tall as wide, its mugs and
+most boxes less than 1.5), width `UPRIGHT_RATIO_WIDTH`, times a step down in that larger side, 1/2 at
+`UPRIGHT_SPAN` (11 cm: what the hand's fingers wrap around; a wider object is not grasped round its
+axis). Both are choices.
+"""
+
+import math
+
+import numpy as np
+
+UPRIGHT_RATIO = 1.8
+UPRIGHT_RATIO_WIDTH = 0.1
+UPRIGHT_SPAN = 0.11  # m
+UPRIGHT_SPAN_WIDTH = 0.005  # m
+
+
+def _logistic(z: float) -> float:
+    return 1.0 / (1.0 + math.exp(max(min(-z, 700.0), -700.0)))
+
+
+def upright_resemblance(height: float, footprint: np.ndarray) -> float:
+    """The resemblance in [0, 1] of an object `height` m tall whose footprint spans `footprint` (m, its
+    two horizontal sides), NaN when either is not finite."""
+    footprint = np.asarray(footprint, float)
+    if not (math.isfinite(height) and np.all(np.isfinite(footprint))) or height <= 0.0:
+        return math.nan
+    side = float(np.max(footprint))
+    ratio = height / max(side, 1e-6)
+    return _logistic((ratio - UPRIGHT_RATIO) / UPRIGHT_RATIO_WIDTH) * _logistic((UPRIGHT_SPAN - side) / UPRIGHT_SPAN_WIDTH)
+
+
+def table_top_uprightness(estimate) -> float:
+    """`upright_resemblance` of a table-top estimate (`table_top.TableTopEstimate`)."""
+    sides = np.asarray(estimate.extents_sides, float)
+    return upright_resemblance(float(estimate.height), sides[:2])
