@@ -73,7 +73,7 @@ def main() -> int:
             c[1] += within
             c[2] += 1
         failures[spec.scenario_name][("held" if first else (attempts[0]["failure"] if attempts else r["failure"]))] += 1
-        chose[spec.scenario_name][(attempts[0]["grasp"] if attempts else r["grasp"]) or "-"] += 1
+        chose[spec.scenario_name][(attempts[0]["grasp"] if attempts else r["grasp"] or extra.get("chosen")) or "-"] += 1
         tries[spec.scenario_name].append(len(attempts) or 1)
     classes = sorted({c for _, c in counts} - {"all"}) + ["all"]
     lines = [f"# Holding what users bring: generated {args.objects} objects, first attempt and within {args.attempts}",
