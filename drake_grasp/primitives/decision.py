@@ -74,16 +74,17 @@ def decision_margin(resemblances: dict) -> float:
     flat = _value(resemblances, FLAT)
     if not math.isfinite(flat):
         return math.nan
-    flat_margin = 2.0 * abs(flat - FLAT_THRESHOLD)
+    # Each rule before the argmax bounds the margin by its own distance from its threshold, and
+    # decides it when it fires.
+    bound = 2.0 * abs(flat - FLAT_THRESHOLD)
     if flat >= FLAT_THRESHOLD:
-        return flat_margin
+        return bound
     upright = _value(resemblances, UPRIGHT)
-    if not math.isfinite(upright):
-        return min(lead, flat_margin)
-    upright_margin = 2.0 * abs(upright - UPRIGHT_THRESHOLD)
-    if upright >= UPRIGHT_THRESHOLD:
-        return min(flat_margin, upright_margin)
-    return min(lead, flat_margin, upright_margin)
+    if math.isfinite(upright):
+        bound = min(bound, 2.0 * abs(upright - UPRIGHT_THRESHOLD))
+        if upright >= UPRIGHT_THRESHOLD:
+            return bound
+    return min(lead, bound)
 
 
 def choose_with_funnels(resemblances: dict, empty: dict, exclude=()) -> str | None:

@@ -29,7 +29,7 @@ SMALL_SIZE = 0.070  # m
 SMALL_WIDTH = 0.007  # m
 
 
-def _step_down(x: float, middle: float, width: float) -> float:
+def step_down(x: float, middle: float, width: float) -> float:
     """1 well below `middle`, 0 well above, 1/2 at it (a logistic of width `width`)."""
     z = (x - middle) / width
     return 1.0 / (1.0 + math.exp(min(z, 700.0)))
@@ -41,8 +41,8 @@ def flat_resemblance(height: float, extents: np.ndarray) -> tuple[float, dict]:
     if not (math.isfinite(height) and np.all(np.isfinite(extents))):
         return math.nan, {"thin": math.nan, "small": math.nan}
     size = max(float(np.max(extents)), float(height))
-    thin = _step_down(float(height), THIN_HEIGHT, THIN_WIDTH)
-    small = _step_down(size, SMALL_SIZE, SMALL_WIDTH)
+    thin = step_down(float(height), THIN_HEIGHT, THIN_WIDTH)
+    small = step_down(size, SMALL_SIZE, SMALL_WIDTH)
     return max(thin, small), {"thin": thin, "small": small}
 
 

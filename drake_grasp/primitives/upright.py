@@ -19,14 +19,12 @@ import math
 
 import numpy as np
 
+from drake_grasp.primitives.flat import step_down
+
 UPRIGHT_RATIO = 1.8
 UPRIGHT_RATIO_WIDTH = 0.1
 UPRIGHT_SPAN = 0.11  # m
 UPRIGHT_SPAN_WIDTH = 0.005  # m
-
-
-def _logistic(z: float) -> float:
-    return 1.0 / (1.0 + math.exp(max(min(-z, 700.0), -700.0)))
 
 
 def upright_resemblance(height: float, footprint: np.ndarray) -> float:
@@ -37,7 +35,7 @@ def upright_resemblance(height: float, footprint: np.ndarray) -> float:
         return math.nan
     side = float(np.max(footprint))
     ratio = height / max(side, 1e-6)
-    return _logistic((ratio - UPRIGHT_RATIO) / UPRIGHT_RATIO_WIDTH) * _logistic((UPRIGHT_SPAN - side) / UPRIGHT_SPAN_WIDTH)
+    return (1.0 - step_down(ratio, UPRIGHT_RATIO, UPRIGHT_RATIO_WIDTH)) * step_down(side, UPRIGHT_SPAN, UPRIGHT_SPAN_WIDTH)
 
 
 def table_top_uprightness(estimate) -> float:
