@@ -165,6 +165,10 @@ class GraspPlan:
             holds the palm in place across and in tilt while pressing this hard along its normal,
             soft along it, so that fingertips that landed on the table stay on it as they close
             (the flower grasp). Zero: the arm is held by position throughout, as in the paper.
+        breakaway: the hand's close. True: torque close with the clutch's breakaway, closing on
+            through the lift and the hold (the paper's). False: a gentle close under the breakaway
+            torque, each finger stopping at its first contact, then held there through the lift and
+            the hold (the flower grasp: `control.grasp_executor`, docs/design.md §5.4f).
     """
 
     grasp: GraspType | None
@@ -174,6 +178,7 @@ class GraspPlan:
     stop_on_contact: bool = True
     finger_preshape: tuple[float, ...] = (0.0,) * 6
     palm_force: float = 0.0
+    breakaway: bool = True
 
     @property
     def compliant_arm(self) -> bool:
@@ -313,7 +318,8 @@ def precision_grasp(estimate: ObjectEstimate) -> GraspPlan:
     palm_z = estimate.table_height + hand.fingertip_depth(angle, spread) - FLOWER_SINK
     target = np.array([estimate.center[0], estimate.center[1], palm_z], float)
     return GraspPlan(GraspType.PRECISION, spread, RigidTransform(R_WP, target),
-                     finger_preshape=(angle,) * 3 + (angle * hand.DISTAL_PER_PROXIMAL,) * 3, palm_force=FLOWER_FORCE)
+                     finger_preshape=(angle,) * 3 + (angle * hand.DISTAL_PER_PROXIMAL,) * 3, palm_force=FLOWER_FORCE,
+                     breakaway=False)
 
 
 COMPLIANT_GRASPS = {

@@ -53,3 +53,34 @@ def test_the_flower_grasp_holds_a_12_mm_plate_the_old_precision_grasp_missed():
                        seed=1, method="oracle", grasp="precision")
     assert record.success, (record.failure, record.detail)
     assert record.lift > 0.09 and "distal" in record.contacts_at_end
+
+
+def test_the_gentle_close_holds_an_8_mm_plate_that_the_breakaway_close_drops(tmp_path):
+    """The flower grasp closes under the clutch's breakaway torque and then holds its fingers: the
+    tips stop on the plate's edges at the table and keep their squeeze through the lift. With the
+    paper's close (breakaway, closing on through the lift) the same plan lifts the plate, then the
+    fingers close past it and it falls (oracle pose, seed 1; docs/design.md §5.4f)."""
+    import dataclasses
+
+    import trimesh
+
+    from drake_grasp.grasps import oracle_estimate, plan_compliant_grasp
+    from drake_grasp.objects.names import resolve_object
+    from drake_grasp.station import load_scenario
+    from drake_grasp.trial.given_plan import run_trial
+
+    path = tmp_path / "plate.obj"
+    trimesh.creation.box(extents=(0.12, 0.08, 0.008)).export(path)
+    spec = resolve_object(str(path))
+
+    def flower(breakaway):
+        def plan(X_WO, spec):
+            return dataclasses.replace(plan_compliant_grasp("precision", oracle_estimate(X_WO, spec)),
+                                       breakaway=breakaway)
+        return plan
+
+    gentle = run_trial(load_scenario(), spec, flower(False), seed=1, method="oracle", grasp="precision")
+    assert gentle.success, (gentle.failure, gentle.detail)
+    assert not any(gentle.breakaway)
+    paper = run_trial(load_scenario(), spec, flower(True), seed=1, method="oracle", grasp="precision")
+    assert not paper.success

@@ -222,3 +222,28 @@ def test_preshape_moves_coupled_fingers_to_their_targets_and_back():
         drive = advance_fingers(drive, 0.0, HandAction.PRESHAPE, 0.0, drive.proximal, drive.distal, zero,
                                 drive.proximal_rate, drive.distal_rate, params, params.period, preshape=zero)
     np.testing.assert_allclose(drive.proximal, 0.0)
+
+
+def test_a_gentle_close_never_breaks_away_and_stalls_with_its_own_lead():
+    params = HandControllerParams()
+    drive = FingerDrive()
+    for _ in range(40):
+        drive = _step(drive, action=HandAction.GENTLE_CLOSE, params=params)
+    assert np.all(drive.proximal > 0.1)
+    np.testing.assert_allclose(drive.distal, drive.proximal * hand.DISTAL_PER_PROXIMAL)
+    # F2 is blocked where it is, and the torque on it is far past the breakaway torque: no breakaway.
+    blocked = drive.proximal.copy()
+    for _ in range(40):
+        drive = _step(drive, action=HandAction.GENTLE_CLOSE, params=params,
+                      q_p=[drive.proximal[0], blocked[1], drive.proximal[2]],
+                      tau=[0.0, 2.0 * params.breakaway_torque, 0.0])
+    assert not drive.broken_away.any()
+    # The blocked finger's command leads it by the gentle torque over the PD gain, and no more.
+    assert drive.proximal[1] == pytest.approx(blocked[1] + params.gentle_close_torque / params.proximal_gains[0])
+    assert drive.proximal[1] - blocked[1] < params.proximal_lead
+    assert drive.proximal[0] > drive.proximal[1] + 0.1  # the free fingers close on
+
+
+def test_a_gentle_close_must_stay_under_the_breakaway_torque():
+    with pytest.raises(ValueError, match="gentle_close_torque"):
+        HandControllerParams(gentle_close_torque=0.6)

@@ -17,6 +17,13 @@ speed and the landing ends when the hand touches (the fingertips on the table); 
 the palm where it landed, across and in tilt, soft along its normal, and presses along it with the
 plan's force, ramped up over `FORCE_RAMP`. The lift takes the arm back to the joint PD from where it
 is (its measured joint angles), so the lift and the hold are the same as every other grasp's.
+
+The hand has two closes. Torque close with breakaway (the paper's, and every plan with `breakaway`)
+closes through the close, the lift and the hold, so that a finger re-squeezes when the object settles.
+A plan without breakaway (the flower grasp) closes gently (HandAction.GENTLE_CLOSE: each finger stops
+at its first contact, its clutch engaged) and then holds its fingers where they stopped through the lift
+and the hold (HandAction.HOLD): the BH8's worm drives are not back-driven, so a light squeeze on a
+thin edge keeps its shape when the lift loads it.
 """
 
 import dataclasses
@@ -273,8 +280,10 @@ class GraspExecutor(LeafSystem):
             action = HandAction.PRESHAPE
         elif phase == GraspPhase.APPROACH:
             action = HandAction.OPEN
-        else:
+        elif motion.plan.breakaway:
             action = HandAction.CLOSE
+        else:
+            action = HandAction.GENTLE_CLOSE if phase == GraspPhase.CLOSE else HandAction.HOLD
         output.SetFromVector([motion.plan.spread, float(action)])
 
     def _CalcPreshape(self, context: Context, output: BasicVector) -> None:

@@ -6,6 +6,9 @@ breakaway torque the clutch slips: the proximal joint holds its angle (its worm 
 back-driven) and the distal joint keeps closing, 4 times faster per motor turn, until it touches the
 object or its 48 deg limit. If the distal link is stopped first, the motor stalls and the whole finger
 stops. A stopped finger keeps squeezing with its stall torque. Reopening re-engages the clutch.
+A gentle close (HandAction.GENTLE_CLOSE) keeps the motor's torque under the clutch's breakaway torque:
+each finger stops, coupled, at its first contact and squeezes lightly there (the flower grasp's close,
+whose fingertips meet a thin object's edge at the table and must not curl over it).
 Spread (F1 and F2, one motor) goes to the compliance mode's angle before the fingers close.
 
 How it is simulated (docs/design.md §5.3): every finger joint has an implicit PD actuator in the plant
@@ -48,6 +51,12 @@ class HandControllerParams:
             breakaway, N*m. Must exceed `breakaway_torque`, or the clutch could never slip.
         distal_squeeze_torque: torque of a stalled distal joint, N*m; 0.75 N*m is a 15 N fingertip
             force at A3 = 50 mm (docs/design.md §4.1: 15-25 N, assumed).
+        gentle_close_torque: the motor's torque on a blocked proximal joint under HandAction.GENTLE_CLOSE,
+            N*m, under `breakaway_torque` so that the clutch never slips: each finger stops, coupled,
+            at its first contact and squeezes there. The BH8's stalled fingertip force before
+            breakaway is set by the commanded velocity and the motor's current limit (BH8-Series
+            User's Manual, D3000 AF.00, §9.3.1, Figure 25: about 2-22 N). The distal joint's stall
+            torque scales with it (one motor drives both). 0.3 N*m is about 4 N at the fingertip.
         spread_torque: stall torque of the spread drive, N*m (assumed).
         closing_time: time for a free proximal joint to go from open to its 140 deg limit, s.
         spread_time: time for the spread to go end to end (180 deg), s.
@@ -58,6 +67,7 @@ class HandControllerParams:
     breakaway_torque: float = hand.BREAKAWAY_TORQUE
     proximal_drive_torque: float = 1.0
     distal_squeeze_torque: float = hand.FINGERTIP_STALL_FORCE * hand.A3
+    gentle_close_torque: float = 0.3
     spread_torque: float = 1.0
     closing_time: float = 1.0
     spread_time: float = 0.5
@@ -67,7 +77,8 @@ class HandControllerParams:
     period: float = 0.005
 
     def __post_init__(self):
-        for name in ("breakaway_torque", "proximal_drive_torque", "distal_squeeze_torque", "spread_torque",
+        for name in ("breakaway_torque", "proximal_drive_torque", "distal_squeeze_torque", "gentle_close_torque",
+                     "spread_torque",
                      "closing_time", "spread_time", "period"):
             value = getattr(self, name)
             if not (math.isfinite(value) and value > 0):
@@ -76,6 +87,11 @@ class HandControllerParams:
             raise ValueError(
                 "hand controller: proximal_drive_torque must exceed breakaway_torque "
                 f"({self.proximal_drive_torque} <= {self.breakaway_torque}), or the clutch never slips"
+            )
+        if self.gentle_close_torque >= self.breakaway_torque:
+            raise ValueError(
+                "hand controller: gentle_close_torque must be under breakaway_torque "
+                f"({self.gentle_close_torque} >= {self.breakaway_torque}), or a gentle close breaks away"
             )
 
     @property
@@ -95,6 +111,15 @@ class HandControllerParams:
     @property
     def distal_lead(self) -> float:
         return self.distal_squeeze_torque / self.distal_gains[0]
+
+    @property
+    def gentle_proximal_lead(self) -> float:
+        return self.gentle_close_torque / self.proximal_gains[0]
+
+    @property
+    def gentle_distal_lead(self) -> float:
+        """The distal joint's lead under a gentle close: its stall torque scaled as the motor's."""
+        return self.distal_lead * self.gentle_close_torque / self.proximal_drive_torque
 
     @property
     def spread_lead(self) -> float:
@@ -222,6 +247,13 @@ def advance_drive(
                 proximal[f] = min(proximal[f] + w_p * dt, proximal_next[f] + proximal_lead,
                                   (distal_next[f] + distal_lead) / ratio)
                 distal[f] = proximal[f] * ratio
+    elif action == HandAction.GENTLE_CLOSE and spread_ready:
+        # The motor's torque stays under the clutch's: the fingers close coupled and stall at contact.
+        gentle_lead, gentle_distal_lead = params.gentle_proximal_lead, params.gentle_distal_lead
+        for f in range(F):
+            proximal[f] = min(proximal[f] + w_p * dt, proximal_next[f] + gentle_lead,
+                              (distal_next[f] + gentle_distal_lead) / ratio)
+            distal[f] = proximal[f] * ratio
     elif action == HandAction.PRESHAPE and spread_ready:
         lo_p, hi_p = hand.PROXIMAL_LIMITS
         for f in range(F):

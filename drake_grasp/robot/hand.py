@@ -125,6 +125,7 @@ class HandAction(enum.IntEnum):
     CLOSE = 1  # torque close with breakaway.
     HOLD = 2  # keep the fingers where they are (and keep squeezing if they squeeze).
     PRESHAPE = 3  # move each finger (coupled, clutch engaged) to a given proximal angle and stop.
+    GENTLE_CLOSE = 4  # close with the motor's torque held under the clutch's breakaway: no breakaway.
 
 
 @dataclasses.dataclass(frozen=True)
