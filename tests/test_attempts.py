@@ -23,6 +23,17 @@ def test_the_object_is_held_when_its_top_rose_with_the_hand():
     assert not unseen.held and unseen.pixels == 0 and math.isnan(unseen.top)
 
 
+def test_a_tall_object_held_from_above_is_seen_held_by_its_sides():
+    # The palm hides the top of a 20 cm object lifted 10 cm: only its sides (0.10-0.24 m) are seen.
+    top, lift, table = 0.20, 0.10, 0.0
+    sides = np.column_stack([np.zeros(50), np.zeros(50), np.linspace(0.10, 0.24, 50)])
+    assert not sense_hold(sides, top, lift).held  # its visible top is under the top test's threshold
+    sensed = sense_hold(sides, top, lift, table)
+    assert sensed.held and sensed.expected_bottom == pytest.approx(table + LIFTED_FRACTION * lift)
+    standing = np.column_stack([np.zeros(50), np.zeros(50), np.linspace(0.0, 0.20, 50)])
+    assert not sense_hold(standing, top, lift, table).held  # left on the table
+
+
 def test_a_later_attempt_finds_the_object_where_the_last_one_left_it():
     from drake_grasp.objects import resolve_object
 

@@ -39,6 +39,7 @@ def attempt_summary(record: TrialRecord) -> dict:
     """One attempt as the combined record lists it."""
     return {"grasp": record.grasp, "chosen": record.chosen_grasp, "success": record.success,
             "failure": record.failure, "detail": record.detail, "sensed_held": record.sensed.get("held"),
+            "sensed": dict(record.sensed),
             "sim_time": record.sim_time, "wall_time": record.wall_time}
 
 

@@ -109,7 +109,7 @@ def _compliant_record(trial: Assembled, lift_height: float) -> TrialRecord:
         if run.seen_points is not None and decision.plan is not None:  # what the robot can tell of the hold
             seen = decision.estimate.as_grasp_estimate()
             top = float(seen.center[2]) + seen.half_extent_along(np.array([0.0, 0.0, 1.0]))
-            record.sensed = sense_hold(run.seen_points, top, lift_height).to_dict()
+            record.sensed = sense_hold(run.seen_points, top, lift_height, seen.table_height).to_dict()
         if estimate.found and run.X_WO_decision is not None:
             errors = compare(estimate, ground_truth(spec, run.X_WO_decision))
             record.estimate_errors = {
