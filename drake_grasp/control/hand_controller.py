@@ -233,27 +233,24 @@ def advance_drive(
     proximal, distal = list(proximal_before), list(distal_before)
     broken = [b > 0.5 for b in x[_BROKEN:_BROKEN + F]]
     angle = list(x[_ANGLE:_ANGLE + F])
-    if action == HandAction.CLOSE and spread_ready:
+    if action in (HandAction.CLOSE, HandAction.GENTLE_CLOSE) and spread_ready:
+        # A gentle close keeps the motor's torque under the clutch's: smaller leads, and no breakaway.
+        gentle = action == HandAction.GENTLE_CLOSE
+        lead_p = params.gentle_proximal_lead if gentle else proximal_lead
+        lead_d = params.gentle_distal_lead if gentle else distal_lead
         for f in range(F):
-            if not broken[f] and proximal_torque[f] > params.breakaway_torque:
+            if not gentle and not broken[f] and proximal_torque[f] > params.breakaway_torque:
                 # The clutch slips: the proximal joint holds where it is; the distal keeps closing.
                 broken[f] = True
                 angle[f] = proximal_measured[f]
                 proximal[f] = proximal_measured[f]
             if broken[f]:
-                distal[f] = min(distal[f] + w_d_free * dt, distal_next[f] + distal_lead)
+                distal[f] = min(distal[f] + w_d_free * dt, distal_next[f] + lead_d)
             else:
                 # One motor turns both joints: it stalls as soon as either joint is blocked.
-                proximal[f] = min(proximal[f] + w_p * dt, proximal_next[f] + proximal_lead,
-                                  (distal_next[f] + distal_lead) / ratio)
+                proximal[f] = min(proximal[f] + w_p * dt, proximal_next[f] + lead_p,
+                                  (distal_next[f] + lead_d) / ratio)
                 distal[f] = proximal[f] * ratio
-    elif action == HandAction.GENTLE_CLOSE and spread_ready:
-        # The motor's torque stays under the clutch's: the fingers close coupled and stall at contact.
-        gentle_lead, gentle_distal_lead = params.gentle_proximal_lead, params.gentle_distal_lead
-        for f in range(F):
-            proximal[f] = min(proximal[f] + w_p * dt, proximal_next[f] + gentle_lead,
-                              (distal_next[f] + gentle_distal_lead) / ratio)
-            distal[f] = proximal[f] * ratio
     elif action == HandAction.PRESHAPE and spread_ready:
         lo_p, hi_p = hand.PROXIMAL_LIMITS
         for f in range(F):
