@@ -8,7 +8,7 @@ from pydrake.math import RollPitchYaw
 
 from drake_grasp.primitives.decision import choose_shape
 from drake_grasp.station import ObjectPlacement, object_rest_pose
-from drake_grasp.trial.sensing import LIFTED_FRACTION, sense_hold
+from drake_grasp.trial.sensing import LIFTED_FRACTION, depth_change, in_hand_depth, sense_hold
 from drake_grasp.trial.spec import TrialSpec
 
 
@@ -32,6 +32,26 @@ def test_a_tall_object_held_from_above_is_seen_held_by_its_sides():
     assert sensed.held and sensed.expected_bottom == pytest.approx(table + LIFTED_FRACTION * lift)
     standing = np.column_stack([np.zeros(50), np.zeros(50), np.linspace(0.0, 0.20, 50)])
     assert not sense_hold(standing, top, lift, table).held  # left on the table
+
+
+def test_an_object_that_slid_in_the_hand_over_the_hold_is_not_held():
+    # The camera rides on the palm: the object's depth, pixel by pixel, changes only when it moves in
+    # the hand. As the hold began the camera saw its top at 6 cm; at the end 1.7 cm farther, and it
+    # sees more of the object then (the fingers' shadows moved): the pixels seen both times decide.
+    mask_start, mask_end = np.zeros((40, 40), bool), np.zeros((40, 40), bool)
+    mask_start[10:20, 10:20] = True
+    mask_end[5:30, 5:30] = True
+    start = in_hand_depth(np.full((40, 40), 0.060), mask_start)
+    slid, still = in_hand_depth(np.full((40, 40), 0.077), mask_end), in_hand_depth(np.full((40, 40), 0.0605), mask_end)
+    assert depth_change(start, slid) == pytest.approx(0.017)
+    top, lift = 0.05, 0.10
+    risen = np.column_stack([np.zeros(50), np.zeros(50), np.linspace(0.10, 0.16, 50)])
+    assert sense_hold(risen, top, lift, hold_depths=(start, still)).held
+    sensed = sense_hold(risen, top, lift, hold_depths=(start, slid))
+    assert not sensed.held and sensed.slid == pytest.approx(0.017)
+    # Too few pixels seen both times: no verdict on slip; the other tests decide.
+    assert math.isnan(depth_change(start, in_hand_depth(np.full((40, 40), 0.077), ~mask_start)))
+    assert sense_hold(risen, top, lift, hold_depths=(start, in_hand_depth(np.full((40, 40), 0.077), ~mask_start))).held
 
 
 def test_a_later_attempt_finds_the_object_where_the_last_one_left_it():

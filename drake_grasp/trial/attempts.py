@@ -2,8 +2,8 @@
 
 One attempt is one camera-driven trial (`compliant.run_compliant_branches`): explore, decide, grasp,
 lift, hold. At its end the robot asks its own sensors whether it holds the object (`sensing.sense_hold`:
-the wrist camera sees whether the object rose with the hand; the simulator's contacts and the object's
-true pose are not sensors). When it does not, or when the arm could not reach any candidate of the
+the wrist camera sees whether the object rose with the hand and stayed put in it over the hold; the
+simulator's contacts and the object's true pose are not sensors). When it does not, or when the arm could not reach any candidate of the
 grasp, the next attempt begins:
 
 * the hand opens and the arm goes back to the exploration's start (not simulated: the next attempt's
@@ -64,7 +64,7 @@ def run_compliant_attempts(scenario: Scenario, spec: ObjectSpec, *, seed: int, a
                                           replay_html=replay_html if k == attempts - 1 else None,
                                           monitor_period=monitor_period, estimate_error=estimate_error,
                                           exclude=tuple(failed_grasps))
-        record = _compliant_record(trial, lift)
+        record = _compliant_record(trial, lift, scenario.protocol.slip_distance)
         done.append(record)
         if k == attempts - 1 or not should_try_again(record):
             break

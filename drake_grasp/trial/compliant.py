@@ -48,7 +48,7 @@ def run_compliant_trials(scenario: Scenario, spec: ObjectSpec, *, seed: int, gra
     (`assembly.assemble_and_run_branches`). The records are those of the trials run one by one
     (wall time aside: each gets its share of the exploration's)."""
     lift = scenario.protocol.execution.lift_height
-    return [_compliant_record(trial, lift) for trial in run_compliant_branches(
+    return [_compliant_record(trial, lift, scenario.protocol.slip_distance) for trial in run_compliant_branches(
         scenario, spec, seed=seed, grasps=grasps, replay_html=replay_html, perception_config=perception_config,
         monitor_period=monitor_period, estimate_error=estimate_error)]
 
@@ -88,10 +88,10 @@ def run_compliant_branches(scenario: Scenario, spec: ObjectSpec, *, seed: int, g
                                      replay_html=replay_html, monitor_period=monitor_period)
 
 
-def _compliant_record(trial: Assembled, lift_height: float) -> TrialRecord:
+def _compliant_record(trial: Assembled, lift_height: float, slip_distance: float) -> TrialRecord:
     """A camera-driven trial's record, with what the decision saw: the estimate, the resemblances,
     the chosen grasp and the estimate's errors against the truth at the decision; and what the wrist
-    camera told of the hold at the end (`sensing.sense_hold`, against the lift height, m)."""
+    camera told of the hold (`sensing.sense_hold`, against the lift height and the obvious slip, m)."""
     record, run, spec = trial.record, trial.run, trial.spec
     decision = run.decision
     if decision is not None:
@@ -109,7 +109,9 @@ def _compliant_record(trial: Assembled, lift_height: float) -> TrialRecord:
         if run.seen_points is not None and decision.plan is not None:  # what the robot can tell of the hold
             seen = decision.estimate.as_grasp_estimate()
             top = float(seen.center[2]) + seen.half_extent_along(np.array([0.0, 0.0, 1.0]))
-            record.sensed = sense_hold(run.seen_points, top, lift_height, seen.table_height).to_dict()
+            in_hand = None if run.depth_at_hold is None else (run.depth_at_hold, run.depth_at_end)
+            record.sensed = sense_hold(run.seen_points, top, lift_height, seen.table_height, in_hand,
+                                       slip_distance).to_dict()
         if estimate.found and run.X_WO_decision is not None:
             errors = compare(estimate, ground_truth(spec, run.X_WO_decision))
             record.estimate_errors = {

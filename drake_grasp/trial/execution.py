@@ -55,8 +55,11 @@ class Executed:
     X_WO_decision: RigidTransform | None = None
     wall_time: float = 0.0
     # At the end (stations with the wrist camera): the object's points the camera sees (`trial.sensing`:
-    # what the robot can tell of a hold), and the object's true pose (where a next attempt finds it).
+    # what the robot can tell of a hold), and the object's true pose (where a next attempt finds it);
+    # and the object's depth images as the hold began and at its end (whether it slid in the hand).
     seen_points: np.ndarray | None = None
+    depth_at_hold: np.ndarray | None = None
+    depth_at_end: np.ndarray | None = None
     X_WO_end: RigidTransform | None = None
 
 
@@ -223,6 +226,10 @@ class _Watch:
             if phase_before != GraspPhase.HOLD and phase == GraspPhase.HOLD:
                 self.X_PO_hold = self.X_PO()
                 self.rise_hold = float(p_WO[2] - self.X_WO.translation()[2])
+                if self.station.diagram.HasOutputPort("camera.depth_image"):
+                    from drake_grasp.trial.sensing import in_hand_depth, object_depth_image
+
+                    self.executed.depth_at_hold = in_hand_depth(*object_depth_image(self.station, context))
 
     def failed(self, e: Exception) -> None:
         """The simulation raised `e`: the trial fails with it."""
@@ -247,9 +254,10 @@ class _Watch:
         contacts_end, on_table = self.touching()
         run.X_WO_end = self.object_body.EvalPoseInWorld(plant_context)
         if self.station.diagram.HasOutputPort("camera.depth_image"):
-            from drake_grasp.trial.sensing import visible_object_points
+            from drake_grasp.trial.sensing import in_hand_depth, object_depth_image, visible_object_points
 
             run.seen_points = visible_object_points(self.station, self.context)
+            run.depth_at_end = in_hand_depth(*object_depth_image(self.station, self.context))
         p_WO_end = run.X_WO_end.translation()
         record.lift = float(p_WO_end[2] - self.X_WO.translation()[2])
         record.contacts_after_close = " ".join(self.contacts_after_close)

@@ -18,6 +18,15 @@ camera's:
   box grasp and lifted 10 cm showed a top 8 mm under the first test's threshold; its sides' lowest
   points were far above the table).
 
+And the object must not have slid in the hand over the hold: the camera also looks as the hold
+begins, and an object that moved `slip_distance` (the success test's obvious slip, 1 cm) or more
+along the camera's axis by its end was not held, though it is still up. The camera rides on the palm,
+so the object's depth, pixel by pixel where both images see it, changes only when it moves in the hand
+(a median over visible points would not do: how much of an object in the hand the camera sees changes
+with the fingers' shadows, 200 pixels as one hold began and 942 at its end, with 0.8 mm of slip). A 3 cm tall ring held by the box
+grasp slid 2.8-3.4 cm down through the fingers and stayed in the hand (novel seed 5150); without this
+test the robot took it for held and did not try again.
+
 It is evaluated once per attempt on the final state, so an attempt that missed still runs its lift
 and hold (simulated seconds, not wall minutes) before the next attempt.
 """
@@ -34,6 +43,8 @@ from drake_grasp.primitives.camera_model import CameraIntrinsics
 LIFTED_FRACTION = 0.5  # of the lift height: the object's top must have risen this much to count as held
 TOP_PERCENTILE = 95  # the visible object's top: this percentile of its points' heights (robust to a stray pixel)
 BOTTOM_PERCENTILE = 5  # the visible object's bottom, likewise
+SLIP_DISTANCE = 0.01  # m: the success test's obvious slip (the scenario's protocol.slip_distance)
+MIN_COMMON_PIXELS = 50  # pixels seeing the object both as the hold began and at its end, to compare them
 
 
 @dataclasses.dataclass(frozen=True)
@@ -48,6 +59,8 @@ class Sensed:
         bottom: the visible object's lowest height, m (NaN when unseen).
         expected_bottom: the table's height plus `LIFTED_FRACTION` of the lift height, m (NaN when
             the table's height was not given).
+        slid: how far the object moved along the camera's axis over the hold (`depth_change`), m (NaN
+            when the hold's start was not seen, or too few pixels saw it both times).
     """
 
     held: bool
@@ -56,6 +69,7 @@ class Sensed:
     expected_top: float
     bottom: float = float("nan")
     expected_bottom: float = float("nan")
+    slid: float = float("nan")
 
     def to_dict(self) -> dict:
         return dataclasses.asdict(self)
@@ -63,22 +77,48 @@ class Sensed:
 
 def visible_object_points(station, root_context, stride: int = 2) -> np.ndarray:
     """World points (N × 3, m) of the object's pixels in the wrist camera's depth image."""
+    depth, mask = object_depth_image(station, root_context)
+    intrinsics = CameraIntrinsics.from_camera_config(station.scenario.camera)
+    X_WC = station.diagram.GetOutputPort("camera.X_WC").Eval(station.diagram.GetMyContextFromRoot(root_context))
+    return table_top.back_project(depth, mask, intrinsics, X_WC.rotation().matrix(), X_WC.translation(), stride)
+
+
+def object_depth_image(station, root_context) -> tuple[np.ndarray, np.ndarray]:
+    """The wrist camera's depth image (H × W, m along the optical axis) and the object's pixels in it
+    (H × W booleans: the label image's, as the exploration segments)."""
     from drake_grasp.perception.wiring import object_labels
 
     station_context = station.diagram.GetMyContextFromRoot(root_context)
     depth = station.diagram.GetOutputPort("camera.depth_image").Eval(station_context).data
     labels = station.diagram.GetOutputPort("camera.label_image").Eval(station_context).data
-    X_WC = station.diagram.GetOutputPort("camera.X_WC").Eval(station_context)
     mask = np.isin(np.asarray(labels).reshape(labels.shape[:2]), object_labels(station))
-    intrinsics = CameraIntrinsics.from_camera_config(station.scenario.camera)
-    return table_top.back_project(depth, mask, intrinsics, X_WC.rotation().matrix(), X_WC.translation(), stride)
+    return np.array(depth, float).reshape(mask.shape), mask
+
+
+def in_hand_depth(depth: np.ndarray, mask: np.ndarray) -> np.ndarray:
+    """The object's depth image: `depth` (m) where `mask` and the depth is finite and positive, NaN elsewhere."""
+    return np.where(mask & np.isfinite(depth) & (depth > 0), depth, np.nan)
+
+
+def depth_change(start: np.ndarray, end: np.ndarray, min_pixels: int = MIN_COMMON_PIXELS) -> float:
+    """How far the object moved along the camera's axis between two of its depth images (`in_hand_depth`,
+    m; NaN off the object): the median change over the pixels that see it in both, m (NaN when fewer
+    than `min_pixels` do). Pixel by pixel, so it does not depend on how much of the object each image
+    sees; the camera rides on the palm, so a change is the object moving in the hand."""
+    both = np.isfinite(start) & np.isfinite(end)
+    if int(both.sum()) < min_pixels:
+        return float("nan")
+    return float(np.median(end[both] - start[both]))
 
 
 def sense_hold(points_W: np.ndarray, top_before: float, lift_height: float,
-               table_z: float | None = None) -> Sensed:
+               table_z: float | None = None, hold_depths: tuple[np.ndarray, np.ndarray] | None = None,
+               slip_distance: float = SLIP_DISTANCE) -> Sensed:
     """Whether the object is held (module docstring): its visible points' top against the top the
-    exploration measured before the grasp (m, world z) and the lift height (m); and, where the table's
-    height `table_z` (m) is given, its visible points' bottom against the table."""
+    exploration measured before the grasp (m, world z) and the lift height (m); where the table's
+    height `table_z` (m) is given, its visible points' bottom against the table; and where
+    `hold_depths` gives the object's depth images (`in_hand_depth`) as the hold began and at its end,
+    how far it moved in the hand along the camera's axis (`depth_change`), against `slip_distance` (m)."""
     expected = float(top_before) + LIFTED_FRACTION * float(lift_height)
     expected_bottom = float("nan") if table_z is None else float(table_z) + LIFTED_FRACTION * float(lift_height)
     if len(points_W) == 0:
@@ -87,4 +127,8 @@ def sense_hold(points_W: np.ndarray, top_before: float, lift_height: float,
     top = float(np.percentile(heights, TOP_PERCENTILE))
     bottom = float(np.percentile(heights, BOTTOM_PERCENTILE))
     held = top >= expected or (table_z is not None and bottom >= expected_bottom)
-    return Sensed(bool(held), int(len(points_W)), top, expected, bottom, expected_bottom)
+    slid = float("nan")
+    if hold_depths is not None:
+        slid = depth_change(*hold_depths)
+        held = held and not abs(slid) >= slip_distance
+    return Sensed(bool(held), int(len(points_W)), top, expected, bottom, expected_bottom, slid)
