@@ -1,7 +1,9 @@
 """The flower: thin, flat and small objects through every compliant grasp and the camera's own choice.
 
-Generates the flower's classes (`drake_grasp.objects.flower`: plates 6-12 mm thick, T and L shapes
-2 cm thick, sticks from 1 cm across, balls and fruit of 4-8 cm), and runs, per object, each of the
+Generates the flower's classes (`drake_grasp.objects.flower`: plates and tiles 6-12 mm thick, T and
+L shapes 2 cm thick, sticks from 1 cm and pens from 0.9 cm across, dominoes lying and standing, cubes
+of 2-3 cm, balls and fruit of 4-8 cm; with --six-classes, the cycle of the first six alone, which the
+results stored up to behaviour 0.7.0 used), and runs, per object, each of the
 four compliant grasps from the true pose (oracle) and the camera-driven algorithm with the
 `table_top` scenario (depth views: the table-top estimate and the flat resemblance, so that it may
 choose the precision grasp itself), for trial seeds 0..SEEDS-1. Records go to OUT/trials.csv as they
@@ -10,7 +12,7 @@ camera chose) to OUT/summary.md, printed, and with --report copied there.
 
 Run: .venv/bin/python scripts/flower_check.py [--count 12] [--seed 0] [--seeds 1] [--workers 2]
      [--out out/flower] [--report docs/results/flower.md] [--grasps precision,box] [--no-camera]
-     [--classes ball,fruit]
+     [--classes ball,fruit] [--six-classes]
 """
 
 import collections
@@ -27,7 +29,7 @@ def main(argv=None) -> int:
     from drake_grasp.cli.common import OneLineParser, UsageError
 
     parser = OneLineParser(prog=PROG, description=__doc__.splitlines()[0])
-    parser.add_argument("--count", type=int, default=12, help="objects (the six classes cycle; default 12)")
+    parser.add_argument("--count", type=int, default=12, help="objects (the classes cycle; default 12)")
     parser.add_argument("--seed", type=int, default=0, help="the generator's seed (default 0)")
     parser.add_argument("--seeds", type=int, default=1, help="trial seeds per object and grasp (default 1)")
     parser.add_argument("--workers", type=int, default=2)
@@ -36,6 +38,8 @@ def main(argv=None) -> int:
     parser.add_argument("--grasps", default=",".join(GRASPS), help="the oracle grasps (comma-separated)")
     parser.add_argument("--no-camera", action="store_true", help="oracle trials only")
     parser.add_argument("--classes", help="keep only these classes of the COUNT objects (comma-separated)")
+    parser.add_argument("--six-classes", action="store_true",
+                        help="cycle through the first six classes alone (the generator up to behaviour 0.7.0)")
     try:
         args = parser.parse_args(argv)
         grasps = [g.strip() for g in args.grasps.split(",") if g.strip()]
@@ -43,11 +47,12 @@ def main(argv=None) -> int:
             raise UsageError(f"--grasps: choose from {', '.join(GRASPS)}")
         if args.count < 1 or args.seeds < 1 or args.seed < 0 or args.workers < 1:
             raise UsageError("--count, --seeds and --workers must be >= 1, --seed >= 0")
-        from drake_grasp.objects.flower import CLASSES
+        from drake_grasp.objects.flower import CLASSES, CLASSES_0_7
 
-        classes = CLASSES if not args.classes else tuple(c.strip() for c in args.classes.split(",") if c.strip())
-        if not classes or any(c not in CLASSES for c in classes):
-            raise UsageError(f"--classes: choose from {', '.join(CLASSES)}")
+        cycle = CLASSES_0_7 if args.six_classes else CLASSES
+        classes = cycle if not args.classes else tuple(c.strip() for c in args.classes.split(",") if c.strip())
+        if not classes or any(c not in cycle for c in classes):
+            raise UsageError(f"--classes: choose from {', '.join(cycle)}")
     except UsageError as error:
         print(f"{PROG}: error: {error}", file=sys.stderr)
         return 2
@@ -60,8 +65,9 @@ def main(argv=None) -> int:
     objects_dir = out / "objects"
     manifest = objects_dir / "manifest.json"
     rows = json.loads(manifest.read_text()) if manifest.is_file() else []
-    if len(rows) != args.count or any(r["seed"] != args.seed for r in rows):
-        rows = flower.generate(args.count, args.seed, objects_dir)
+    if (len(rows) != args.count or any(r["seed"] != args.seed for r in rows)
+            or [r["class"] for r in rows] != [cycle[i % len(cycle)] for i in range(args.count)]):
+        rows = flower.generate(args.count, args.seed, objects_dir, cycle)
     objects = [(str(objects_dir / r["file"]), r["class"]) for r in rows if r["class"] in classes]
     specs = [TrialSpec(path, "oracle", g, s) for path, _ in objects for g in grasps for s in range(args.seeds)]
     if not args.no_camera:

@@ -6,11 +6,11 @@ from drake_grasp.objects import flower
 
 
 def test_the_flower_generator_is_seeded_and_its_objects_are_the_named_sizes(tmp_path):
-    rows = flower.generate(12, 3, tmp_path)
+    rows = flower.generate(22, 3, tmp_path)
     assert [r["class"] for r in rows] == list(flower.CLASSES) * 2
     again = flower.flower_object(3, 7)
     assert (tmp_path / rows[7]["file"]).read_text().count("\nv ") == len(again.mesh.vertices)
-    for index in range(12):
+    for index in range(22):
         obj = flower.flower_object(3, index)
         assert obj.mesh.is_watertight and obj.mesh.volume > 0
         low, mid, high = sorted(obj.mesh.extents)
@@ -20,9 +20,21 @@ def test_the_flower_generator_is_seeded_and_its_objects_are_the_named_sizes(tmp_
             assert 0.015 - 1e-6 <= low <= 0.025 + 1e-6
         elif obj.shape_class == "stick":
             assert 0.01 - 1e-6 <= low and mid <= 0.02 + 1e-6 and 0.06 - 1e-6 <= high <= 0.14 + 1e-6
+        elif obj.shape_class == "tile":
+            assert 0.006 - 1e-6 <= low <= 0.012 + 1e-6 and 0.85 * high - 1e-6 <= mid and 0.04 * 0.85 <= mid and high <= 0.10 + 1e-6
+        elif obj.shape_class == "pen":  # lying along x
+            assert 0.009 * np.cos(np.pi / 6) - 1e-6 <= low and mid <= 0.013 + 1e-6 and 0.11 - 1e-6 <= obj.mesh.extents[0] <= 0.15 + 1e-6
+        elif obj.shape_class in ("domino", "standing_domino"):
+            assert 0.008 - 1e-6 <= low <= 0.012 + 1e-6 and 0.022 - 1e-6 <= mid <= 0.028 + 1e-6 and 0.044 - 1e-6 <= high <= 0.056 + 1e-6
+            assert (obj.mesh.extents[2] == high) == (obj.shape_class == "standing_domino")  # on its end, or lying
+        elif obj.shape_class == "cube":
+            assert 0.02 - 1e-6 <= low and high <= 0.03 + 1e-6 and high - low < 1e-4
         else:  # ball, fruit
             assert 0.04 - 1e-3 <= high <= 0.08 + 1e-3
     np.testing.assert_array_equal(flower.flower_object(3, 4).mesh.vertices, flower.flower_object(3, 4).mesh.vertices)
+    # The six-class cycle of the results stored up to behaviour 0.7.0 still regenerates.
+    old = flower.flower_object(0, 7, flower.CLASSES_0_7)
+    assert old.name == "T_0_007" and old.mesh.is_watertight
 
 
 def test_flower_check_refuses_an_unknown_class_in_one_line(capsys):
@@ -35,7 +47,9 @@ def test_flower_check_refuses_an_unknown_class_in_one_line(capsys):
     spec.loader.exec_module(module)
     assert module.main(["--classes", "ball,pear"]) == 2
     err = capsys.readouterr().err
-    assert err.count("\n") == 1 and "--classes: choose from plate, T, L, stick, ball, fruit" in err
+    assert err.count("\n") == 1 and "--classes: choose from " + ", ".join(flower.CLASSES) in err
+    assert module.main(["--classes", "cube", "--six-classes"]) == 2
+    assert "--classes: choose from plate, T, L, stick, ball, fruit" in capsys.readouterr().err
 
 
 def test_the_flower_grasp_holds_a_12_mm_plate_the_old_precision_grasp_missed():
@@ -84,3 +98,12 @@ def test_the_gentle_close_holds_an_8_mm_plate_that_the_breakaway_close_drops(tmp
     assert not any(gentle.breakaway)
     paper = run_trial(load_scenario(), spec, flower(True), seed=1, method="oracle", grasp="precision")
     assert not paper.success
+
+
+def test_cli_generates_the_flower_objects(tmp_path, capsys):
+    from drake_grasp.cli import main
+
+    assert main(["objects", "generate", "--kind", "flower", "--count", "11", "--seed", "4", "--out", str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    assert "11 flower objects (" + ", ".join(sorted(flower.CLASSES)) + ")" in out
+    assert len(list(tmp_path.glob("*.obj"))) == 11

@@ -16,9 +16,12 @@ def add_objects(sub) -> None:
         "(default): OBJ meshes, classes in turn: non-convex blobs, unions of boxes/cylinders/ellipsoids, "
         "thin plates, L and T shapes, rings, handles; largest extent 3-25 cm. --kind everyday: what "
         "users bring: polycubes, scans, mugs, bottles and boxes, every second one a URDF naming its mesh "
-        "with a placeholder inertia. The same --seed gives byte-identical files.",
+        "with a placeholder inertia. --kind flower: the thin, flat and small objects of the flower grasp: "
+        "plates and tiles 6-12 mm thick, T and L shapes, sticks and pens, dominoes lying and standing, "
+        "cubes of 2-3 cm, balls and fruit. The same --seed gives byte-identical files.",
     )
-    generate.add_argument("--kind", choices=("novel", "everyday"), default="novel", help="which generator (default novel)")
+    generate.add_argument("--kind", choices=("novel", "everyday", "flower"), default="novel",
+                          help="which generator (default novel)")
     generate.add_argument("--count", type=int, required=True, metavar="N", help="how many objects")
     generate.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
     generate.add_argument("--out", required=True, metavar="DIR", help="directory for the meshes and manifest")
@@ -28,13 +31,13 @@ def add_objects(sub) -> None:
 
 
 def _run_objects_generate(args) -> int:
-    from drake_grasp.objects import everyday, novel
+    from drake_grasp.objects import everyday, flower, novel
 
     check_seed(args.seed)
     if args.count < 1:
         raise UsageError(f"--count must be >= 1, got {args.count}")
     out = check_out_dir(args.out)
-    rows = (novel if args.kind == "novel" else everyday).generate(args.count, args.seed, out)
+    rows = {"novel": novel, "everyday": everyday, "flower": flower}[args.kind].generate(args.count, args.seed, out)
     if args.json:
         print(json.dumps({"out": str(out), "objects": rows}))
     else:

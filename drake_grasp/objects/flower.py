@@ -9,11 +9,20 @@ the acceptance target names (issue 24):
 * ``T`` and ``L``: two bars 2 cm thick (1.5-2.5 cm), 1.5-3 cm wide, the stem 7-12 cm long;
 * ``stick``: a box or cylinder 1-2 cm across and 6-14 cm long, lying (a marker, a chopstick bundle);
 * ``ball``: a sphere 4-8 cm across;
-* ``fruit``: a lumpy ellipsoid 4-8 cm across (a plum, an egg, a small orange).
+* ``fruit``: a lumpy ellipsoid 4-8 cm across (a plum, an egg, a small orange);
+* ``tile``: a nearly square tile 4-10 cm on a side, 6-12 mm thick, its edges bevelled 0-2 mm (a
+  coaster, a bathroom tile, a mahjong tile lying);
+* ``pen``: a round or hexagonal barrel 0.9-1.3 cm across and 11-15 cm long with a conical tip,
+  lying (a pen, a pencil, a marker);
+* ``domino``: a 4.4-5.6 × 2.2-2.8 × 0.8-1.2 cm block lying on its face;
+* ``standing_domino``: the same block standing on its short end, as dominoes stand in a row;
+* ``cube``: a cube 2-3 cm on a side, its edges rounded 0-3 mm (a die, a sugar cube, a toy block).
 
 Object `index` of seed `seed` is drawn from default_rng([seed, index]); its class cycles through
-CLASSES, so any six consecutive indices cover them all. Files are closed 2-manifolds in metres,
-written like the novel objects' (`novel.obj_text`).
+CLASSES, so any eleven consecutive indices cover them all. Up to behaviour version 0.7.0 the cycle
+was the first six classes alone (`CLASSES_0_7`, which the stored results in docs/results/flower.md
+used; pass it as `classes` to regenerate them). Files are closed 2-manifolds in metres, written like
+the novel objects' (`novel.obj_text`).
 """
 
 from __future__ import annotations
@@ -28,7 +37,8 @@ import trimesh
 
 from drake_grasp.objects.novel import CIRCULAR_SEGMENTS, obj_text
 
-CLASSES = ("plate", "T", "L", "stick", "ball", "fruit")
+CLASSES_0_7 = ("plate", "T", "L", "stick", "ball", "fruit")
+CLASSES = ("plate", "tile", "T", "L", "stick", "pen", "domino", "standing_domino", "cube", "ball", "fruit")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -101,20 +111,77 @@ def _fruit(rng: np.random.Generator) -> trimesh.Trimesh:
     return mesh
 
 
-def flower_object(seed: int, index: int) -> FlowerObject:
-    """Object `index` of seed `seed` (module docstring)."""
+def _tile(rng: np.random.Generator) -> trimesh.Trimesh:
+    import manifold3d as m
+
+    side = rng.uniform(0.04, 0.10)
+    other = side * rng.uniform(0.85, 1.0)
+    thickness = rng.uniform(0.006, 0.012)
+    bevel = rng.uniform(0.0, min(0.002, thickness / 4))
+    if bevel < 2e-4:
+        return trimesh.creation.box([side, other, thickness])
+    # A bevelled slab: the hull of a full-size core and a face inset by the bevel on each side.
+    core = m.Manifold.cube((side, other, thickness - 2 * bevel), center=True)
+    face = m.Manifold.cube((side - 2 * bevel, other - 2 * bevel, thickness), center=True)
+    return _from_manifold(m.Manifold.batch_hull([core, face]))
+
+
+def _pen(rng: np.random.Generator) -> trimesh.Trimesh:
+    import manifold3d as m
+
+    across, length = rng.uniform(0.009, 0.013), rng.uniform(0.11, 0.15)
+    sides = 6 if rng.uniform() < 0.5 else CIRCULAR_SEGMENTS
+    tip = rng.uniform(0.012, 0.02)
+    barrel = m.Manifold.cylinder(length - tip, across / 2, circular_segments=sides)
+    cone = m.Manifold.cylinder(tip, across / 2, across / 8, circular_segments=sides).translate((0.0, 0.0, length - tip))
+    pen = (barrel + cone).rotate((0.0, 90.0, 0.0))  # lying along x
+    return _from_manifold(pen)
+
+
+def _domino_block(rng: np.random.Generator) -> tuple[float, float, float]:
+    return rng.uniform(0.044, 0.056), rng.uniform(0.022, 0.028), rng.uniform(0.008, 0.012)
+
+
+def _cube(rng: np.random.Generator) -> trimesh.Trimesh:
+    import manifold3d as m
+
+    side = rng.uniform(0.02, 0.03)
+    radius = rng.uniform(0.0, 0.003)
+    if radius < 3e-4:
+        return trimesh.creation.box([side, side, side])
+    inner = side - 2 * radius
+    corners = [m.Manifold.sphere(radius, CIRCULAR_SEGMENTS // 2).translate((x, y, z))
+               for x in (-inner / 2, inner / 2) for y in (-inner / 2, inner / 2) for z in (-inner / 2, inner / 2)]
+    return _from_manifold(m.Manifold.batch_hull(corners))
+
+
+def flower_object(seed: int, index: int, classes: tuple[str, ...] = CLASSES) -> FlowerObject:
+    """Object `index` of seed `seed`, its class cycling through `classes` (module docstring)."""
     rng = np.random.default_rng([seed, index])
-    shape_class = CLASSES[index % len(CLASSES)]
+    shape_class = classes[index % len(classes)]
     if shape_class == "plate":
         mesh = _rounded_plate(rng)
+    elif shape_class == "tile":
+        mesh = _tile(rng)
+    elif shape_class == "pen":
+        mesh = _pen(rng)
+    elif shape_class == "domino":
+        mesh = trimesh.creation.box(_domino_block(rng))
+    elif shape_class == "standing_domino":
+        length, width, thickness = _domino_block(rng)
+        mesh = trimesh.creation.box([thickness, width, length])
+    elif shape_class == "cube":
+        mesh = _cube(rng)
     elif shape_class in ("T", "L"):
         mesh = _letter(rng, shape_class)
     elif shape_class == "stick":
         mesh = _stick(rng)
     elif shape_class == "ball":
         mesh = _ball(rng)
-    else:
+    elif shape_class == "fruit":
         mesh = _fruit(rng)
+    else:
+        raise ValueError(f"unknown flower class {shape_class!r}: choose from {', '.join(CLASSES)}")
     mesh.apply_translation(-mesh.bounds.mean(axis=0))
     mesh.vertices = np.round(mesh.vertices, 6)
     if mesh.volume < 0:
@@ -122,15 +189,15 @@ def flower_object(seed: int, index: int) -> FlowerObject:
     return FlowerObject(f"{shape_class}_{seed}_{index:03d}", shape_class, seed, index, mesh)
 
 
-def generate(count: int, seed: int, out_dir: str | Path) -> list[dict]:
-    """Writes objects 0..count-1 of `seed` as OBJ files into `out_dir` with ``manifest.json`` and
+def generate(count: int, seed: int, out_dir: str | Path, classes: tuple[str, ...] = CLASSES) -> list[dict]:
+    """Writes objects 0..count-1 of `seed` (their classes cycling through `classes`) as OBJ files into `out_dir` with ``manifest.json`` and
     ``manifest.csv``, as the other generators do; returns the manifest rows ({"file", "class", "seed",
     "index", "extents_m"})."""
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     rows = []
     for index in range(count):
-        obj = flower_object(seed, index)
+        obj = flower_object(seed, index, classes)
         file = f"{obj.name}.obj"
         (out_dir / file).write_text(obj_text(obj.mesh))
         rows.append({"file": file, "class": obj.shape_class, "seed": seed, "index": index,

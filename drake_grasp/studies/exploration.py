@@ -80,7 +80,8 @@ def study_objects(config: ExplorationConfig, out_dir: pathlib.Path) -> list[tupl
     objects = [(name, "paper", name) for name in (config.paper or PAPER_OBJECTS)]
     sets = (("near", config.near, lambda d: near_primitives.generate(config.near, config.object_seed, d)),
             ("novel", config.novel, lambda d: novel.generate(config.novel, config.object_seed, d)),
-            ("flower", config.flower, lambda d: flower.generate(config.flower, config.object_seed, d)))
+            # The flower's first six classes, as when this study's results were stored (behaviour 0.7.0).
+            ("flower", config.flower, lambda d: flower.generate(config.flower, config.object_seed, d, flower.CLASSES_0_7)))
     for name, count, generate in sets:
         if count:
             rows = ensure_generated(out_dir / "objects" / name, generate, count, (config.object_seed,))
