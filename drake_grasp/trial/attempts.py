@@ -3,8 +3,8 @@
 One attempt is one camera-driven trial (`compliant.run_compliant_branches`): explore, decide, grasp,
 lift, hold. At its end the robot asks its own sensors whether it holds the object (`sensing.sense_hold`:
 the wrist camera sees whether the object rose with the hand and stayed put in it over the hold; the
-simulator's contacts and the object's true pose are not sensors). When it does not, or when the arm could not reach any candidate of the
-grasp, the next attempt begins:
+simulator's contacts and the object's true pose are not sensors). When it does not, or when the arm
+could not reach any candidate of the grasp, the next attempt begins:
 
 * the hand opens and the arm goes back to the exploration's start (not simulated: the next attempt's
   simulation starts with the arm there and the object lying where the last one left it, at rest);

@@ -21,11 +21,12 @@ camera's:
 And the object must not have slid in the hand over the hold: the camera also looks as the hold
 begins, and an object that moved `slip_distance` (the success test's obvious slip, 1 cm) or more
 along the camera's axis by its end was not held, though it is still up. The camera rides on the palm,
-so the object's depth, pixel by pixel where both images see it, changes only when it moves in the hand
-(a median over visible points would not do: how much of an object in the hand the camera sees changes
-with the fingers' shadows, 200 pixels as one hold began and 942 at its end, with 0.8 mm of slip). A 3 cm tall ring held by the box
-grasp slid 2.8-3.4 cm down through the fingers and stayed in the hand (novel seed 5150); without this
-test the robot took it for held and did not try again.
+so the object's depth, pixel by pixel where both images see it, changes only when it moves in the
+hand. (A median over the visible points would not do: how much of a held object the camera sees can
+change while it stays put, 200 pixels as one hold began and 942 at its end with 0.8 mm of slip; why
+was not traced.) A 3 cm tall ring held by the box grasp slid 2.8-3.4 cm down through the fingers and
+stayed in the hand (novel seed 5150); without this test the robot took it for held and did not try
+again.
 
 It is evaluated once per attempt on the final state, so an attempt that missed still runs its lift
 and hold (simulated seconds, not wall minutes) before the next attempt.
