@@ -11,12 +11,14 @@ runner: rerun the same command to go on).
 
 Run: .venv/bin/python scripts/holding_study.py [--objects everyday] --count 14 --seed 9001 --seeds 1,2 --attempts 3
      --scenarios table_top,funnel --workers 2 --out out/holding [--report docs/results/holding.md]
+     [--classes blob,union,ring,handle]
 """
 
 import argparse
 import collections
 import json
 import pathlib
+import sys
 import time
 
 from drake_grasp.studies.novel import ensure_objects
@@ -37,10 +39,19 @@ def main() -> int:
     parser.add_argument("--workers", type=int, default=2)
     parser.add_argument("--out", default="out/holding")
     parser.add_argument("--report", help="write the summary as Markdown here")
+    parser.add_argument("--classes", help="run only these classes of the COUNT objects (comma-separated)")
     args = parser.parse_args()
     out = pathlib.Path(args.out)
     seeds = [int(s) for s in args.seeds.split(",")]
     scenarios = args.scenarios.split(",")
+    if args.classes:  # checked before any work starts
+        from drake_grasp.objects import everyday, novel
+
+        known = (novel if args.objects == "novel" else everyday).CLASSES
+        keep = {c.strip() for c in args.classes.split(",") if c.strip()}
+        if not keep or keep - set(known):
+            print(f"holding_study: error: --classes: choose from {', '.join(known)}", file=sys.stderr)
+            return 2
     start = time.perf_counter()
     if args.objects == "novel":
         objects = ensure_objects(out / "objects", args.count, args.seed)
@@ -50,6 +61,8 @@ def main() -> int:
 
         objects = ensure_generated(out / "objects", lambda staging: everyday.generate(args.count, args.seed, staging),
                                    args.count, (args.seed,))
+    if args.classes:
+        objects = [o for o in objects if o["class"] in keep]
     specs = [TrialSpec(str(o["file"]), "compliant", "", s, scenario_name=n, attempts=args.attempts)
              for n in scenarios for o in objects for s in seeds]
     rows = run_trials(specs, out / "trials.csv", executor=LocalExecutor(args.workers), label="holding")
@@ -78,7 +91,8 @@ def main() -> int:
     classes = sorted({c for _, c in counts} - {"all"}) + ["all"]
     lines = [f"# Holding what users bring: generated {args.objects} objects, first attempt and within {args.attempts}",
              "", f"`scripts/holding_study.py --objects {args.objects} --count {args.count} --seed {args.seed} --seeds {args.seeds} "
-             f"--attempts {args.attempts} --scenarios {args.scenarios}`: {len(objects)} objects of generator seed "
+             f"--attempts {args.attempts} --scenarios {args.scenarios}"
+             + (f" --classes {args.classes}" if args.classes else "") + f"`: {len(objects)} objects of generator seed "
              f"{args.seed}, trial seeds {args.seeds}, the algorithm's own choice (camera only), "
              f"{len(rows)} trials in {wall / 60:.0f} min on {args.workers} workers.", "",
              "| class | " + " | ".join(f"{n}: first attempt | {n}: within {args.attempts}" for n in scenarios) + " |",
