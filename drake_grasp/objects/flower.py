@@ -181,7 +181,7 @@ def flower_object(seed: int, index: int, classes: tuple[str, ...] = CLASSES) -> 
     elif shape_class == "fruit":
         mesh = _fruit(rng)
     else:
-        raise ValueError(f"unknown flower class {shape_class!r}: choose from {', '.join(CLASSES)}")
+        raise ValueError(f"unknown flower class {shape_class!r}: choose from {', '.join(classes)}")
     mesh.apply_translation(-mesh.bounds.mean(axis=0))
     mesh.vertices = np.round(mesh.vertices, 6)
     if mesh.volume < 0:
@@ -190,9 +190,9 @@ def flower_object(seed: int, index: int, classes: tuple[str, ...] = CLASSES) -> 
 
 
 def generate(count: int, seed: int, out_dir: str | Path, classes: tuple[str, ...] = CLASSES) -> list[dict]:
-    """Writes objects 0..count-1 of `seed` (their classes cycling through `classes`) as OBJ files into `out_dir` with ``manifest.json`` and
-    ``manifest.csv``, as the other generators do; returns the manifest rows ({"file", "class", "seed",
-    "index", "extents_m"})."""
+    """Writes objects 0..count-1 of `seed` (their classes cycling through `classes`) as OBJ files into
+    `out_dir` with ``manifest.json`` and ``manifest.csv``, as the other generators do; returns the
+    manifest rows ({"file", "class", "seed", "index", "extents_m"})."""
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     rows = []

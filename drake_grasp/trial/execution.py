@@ -256,8 +256,9 @@ class _Watch:
         if self.station.diagram.HasOutputPort("camera.depth_image"):
             from drake_grasp.trial.sensing import in_hand_depth, object_depth_image, visible_object_points
 
-            run.seen_points = visible_object_points(self.station, self.context)
-            run.depth_at_end = in_hand_depth(*object_depth_image(self.station, self.context))
+            image = object_depth_image(self.station, self.context)
+            run.seen_points = visible_object_points(self.station, self.context, image=image)
+            run.depth_at_end = in_hand_depth(*image)
         p_WO_end = run.X_WO_end.translation()
         record.lift = float(p_WO_end[2] - self.X_WO.translation()[2])
         record.contacts_after_close = " ".join(self.contacts_after_close)

@@ -76,9 +76,11 @@ class Sensed:
         return dataclasses.asdict(self)
 
 
-def visible_object_points(station, root_context, stride: int = 2) -> np.ndarray:
-    """World points (N × 3, m) of the object's pixels in the wrist camera's depth image."""
-    depth, mask = object_depth_image(station, root_context)
+def visible_object_points(station, root_context, stride: int = 2,
+                          image: tuple[np.ndarray, np.ndarray] | None = None) -> np.ndarray:
+    """World points (N × 3, m) of the object's pixels in the wrist camera's depth image (`image`:
+    `object_depth_image`'s, when the caller has it already)."""
+    depth, mask = image if image is not None else object_depth_image(station, root_context)
     intrinsics = CameraIntrinsics.from_camera_config(station.scenario.camera)
     X_WC = station.diagram.GetOutputPort("camera.X_WC").Eval(station.diagram.GetMyContextFromRoot(root_context))
     return table_top.back_project(depth, mask, intrinsics, X_WC.rotation().matrix(), X_WC.translation(), stride)
