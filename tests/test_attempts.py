@@ -54,6 +54,22 @@ def test_an_object_that_slid_in_the_hand_over_the_hold_is_not_held():
     assert sense_hold(risen, top, lift, hold_depths=(start, in_hand_depth(np.full((40, 40), 0.077), ~mask_start))).held
 
 
+def test_a_tall_object_left_on_the_table_is_not_held_though_its_sides_stand_high():
+    # A 17.8 cm object that never rose: from above, the camera sees only its upper sides, whose lowest
+    # points stand over the bottom test's threshold. The camera rose 10 cm with the hand, so the
+    # object's depth grew by 10 cm from the lift's start: left behind.
+    top, lift, table = 0.178, 0.10, 0.0
+    sides = np.column_stack([np.zeros(50), np.zeros(50), np.linspace(0.068, 0.178, 50)])
+    assert sense_hold(sides, top, lift, table).held  # the bottom test alone is fooled
+    mask = np.zeros((40, 40), bool)
+    mask[10:30, 10:30] = True
+    at_lift = in_hand_depth(np.full((40, 40), 0.050), mask)
+    left, risen = in_hand_depth(np.full((40, 40), 0.150), mask), in_hand_depth(np.full((40, 40), 0.052), mask)
+    sensed = sense_hold(sides, top, lift, table, lift_depths=(at_lift, left))
+    assert not sensed.held and sensed.rose_short == pytest.approx(lift)
+    assert sense_hold(sides, top, lift, table, lift_depths=(at_lift, risen)).held
+
+
 def test_a_later_attempt_finds_the_object_where_the_last_one_left_it():
     from drake_grasp.objects import resolve_object
 

@@ -56,8 +56,10 @@ class Executed:
     wall_time: float = 0.0
     # At the end (stations with the wrist camera): the object's points the camera sees (`trial.sensing`:
     # what the robot can tell of a hold), and the object's true pose (where a next attempt finds it);
-    # and the object's depth images as the hold began and at its end (whether it slid in the hand).
+    # and the object's depth images as the lift began, as the hold began and at the end (whether it rose
+    # with the hand, and whether it slid in it).
     seen_points: np.ndarray | None = None
+    depth_at_lift: np.ndarray | None = None
     depth_at_hold: np.ndarray | None = None
     depth_at_end: np.ndarray | None = None
     X_WO_end: RigidTransform | None = None
@@ -223,13 +225,20 @@ class _Watch:
                 self.snapshot = last
             if phase_before == GraspPhase.CLOSE and phase == GraspPhase.LIFT:
                 self.contacts_after_close, _ = self.touching()
+                self.executed.depth_at_lift = self.object_depth()
             if phase_before != GraspPhase.HOLD and phase == GraspPhase.HOLD:
                 self.X_PO_hold = self.X_PO()
                 self.rise_hold = float(p_WO[2] - self.X_WO.translation()[2])
-                if self.station.diagram.HasOutputPort("camera.depth_image"):
-                    from drake_grasp.trial.sensing import in_hand_depth, object_depth_image
+                self.executed.depth_at_hold = self.object_depth()
 
-                    self.executed.depth_at_hold = in_hand_depth(*object_depth_image(self.station, context))
+    def object_depth(self) -> np.ndarray | None:
+        """The object's depth image in the wrist camera now (`sensing.in_hand_depth`, m), or None on a
+        station without the camera."""
+        if not self.station.diagram.HasOutputPort("camera.depth_image"):
+            return None
+        from drake_grasp.trial.sensing import in_hand_depth, object_depth_image
+
+        return in_hand_depth(*object_depth_image(self.station, self.context))
 
     def failed(self, e: Exception) -> None:
         """The simulation raised `e`: the trial fails with it."""

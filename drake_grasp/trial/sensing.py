@@ -18,6 +18,13 @@ camera's:
   box grasp and lifted 10 cm showed a top 8 mm under the first test's threshold; its sides' lowest
   points were far above the table).
 
+And it must have risen with the camera: the camera also looks as the lift begins (the hand closed on
+it, still low). The camera rides on the palm, so an object that rose with the hand keeps its depth,
+pixel by pixel, while one left on the table is as much deeper as the hand rose. An object whose depth
+grew by `LIFTED_FRACTION` of the lift height or more was left behind, whatever its visible sides'
+heights say (a 17.8 cm union that never rose showed sides whose lowest visible points stood 6.8 cm
+above the table, over the bottom test's threshold: novel seed 31337).
+
 And the object must not have slid in the hand over the hold: the camera also looks as the hold
 begins, and an object that moved `slip_distance` (the success test's obvious slip, 1 cm) or more
 along the camera's axis by its end was not held, though it is still up. The camera rides on the palm,
@@ -62,6 +69,8 @@ class Sensed:
             the table's height was not given).
         slid: how far the object moved along the camera's axis over the hold (`depth_change`), m (NaN
             when the hold's start was not seen, or too few pixels saw it both times).
+        rose_short: how much less than the hand the object rose from the lift's start to the end
+            (`depth_change`: its depth in the camera's view grows by that much), m (NaN likewise).
     """
 
     held: bool
@@ -71,6 +80,7 @@ class Sensed:
     bottom: float = float("nan")
     expected_bottom: float = float("nan")
     slid: float = float("nan")
+    rose_short: float = float("nan")
 
     def to_dict(self) -> dict:
         return dataclasses.asdict(self)
@@ -116,12 +126,15 @@ def depth_change(start: np.ndarray, end: np.ndarray, min_pixels: int = MIN_COMMO
 
 def sense_hold(points_W: np.ndarray, top_before: float, lift_height: float,
                table_z: float | None = None, hold_depths: tuple[np.ndarray, np.ndarray] | None = None,
-               slip_distance: float = SLIP_DISTANCE) -> Sensed:
+               slip_distance: float = SLIP_DISTANCE,
+               lift_depths: tuple[np.ndarray, np.ndarray] | None = None) -> Sensed:
     """Whether the object is held (module docstring): its visible points' top against the top the
     exploration measured before the grasp (m, world z) and the lift height (m); where the table's
     height `table_z` (m) is given, its visible points' bottom against the table; and where
     `hold_depths` gives the object's depth images (`in_hand_depth`) as the hold began and at its end,
-    how far it moved in the hand along the camera's axis (`depth_change`), against `slip_distance` (m)."""
+    how far it moved in the hand along the camera's axis (`depth_change`), against `slip_distance` (m);
+    and where `lift_depths` gives them as the lift began and at the end, whether it was left behind:
+    its depth grew by `LIFTED_FRACTION` of the lift height or more."""
     expected = float(top_before) + LIFTED_FRACTION * float(lift_height)
     expected_bottom = float("nan") if table_z is None else float(table_z) + LIFTED_FRACTION * float(lift_height)
     if len(points_W) == 0:
@@ -134,4 +147,8 @@ def sense_hold(points_W: np.ndarray, top_before: float, lift_height: float,
     if hold_depths is not None:
         slid = depth_change(*hold_depths)
         held = held and not abs(slid) >= slip_distance
-    return Sensed(bool(held), int(len(points_W)), top, expected, bottom, expected_bottom, slid)
+    rose_short = float("nan")
+    if lift_depths is not None:
+        rose_short = depth_change(*lift_depths)
+        held = held and not rose_short >= LIFTED_FRACTION * float(lift_height)
+    return Sensed(bool(held), int(len(points_W)), top, expected, bottom, expected_bottom, slid, rose_short)
