@@ -4,7 +4,7 @@ import math
 
 import numpy as np
 import pytest
-from pydrake.math import RollPitchYaw
+from pydrake.math import RigidTransform, RollPitchYaw
 
 from drake_grasp.primitives.decision import choose_shape
 from drake_grasp.station import ObjectPlacement, object_rest_pose
@@ -70,6 +70,21 @@ def test_a_tall_object_left_on_the_table_is_not_held_though_its_sides_stand_high
     assert sense_hold(sides, top, lift, table, lift_depths=(at_lift, risen)).held
 
 
+def test_an_unseen_object_is_held_only_when_a_finger_is_blocked():
+    # A small object held by the flower grasp can be hidden whole by the fingers. Lifted clear of the
+    # table, a finger that closed on nothing runs to its limit (140 deg); one stopped short is blocked.
+    top, lift, unseen = 0.02, 0.10, np.zeros((0, 3))
+    closed = np.radians([139.0, 140.0, 138.0])
+    blocked = np.radians([138.0, 137.0, 107.0])
+    assert not sense_hold(unseen, top, lift).held
+    assert not sense_hold(unseen, top, lift, proximal_angles=closed).held
+    sensed = sense_hold(unseen, top, lift, proximal_angles=blocked)
+    assert sensed.held and sensed.unseen_in_hand and sensed.pixels == 0
+    # Seen: the camera decides, whatever the fingers.
+    left = np.column_stack([np.zeros(50), np.zeros(50), np.linspace(0.0, 0.02, 50)])
+    assert not sense_hold(left, top, lift, proximal_angles=blocked).held
+
+
 def test_a_later_attempt_finds_the_object_where_the_last_one_left_it():
     from drake_grasp.objects import resolve_object
 
@@ -87,6 +102,21 @@ def test_the_decision_runs_without_the_grasps_that_failed():
     assert choose_shape(resemblances, exclude=("flat",)) == "box"
     assert choose_shape(resemblances, exclude=("flat", "box")) == "sphere"
     assert choose_shape(resemblances, exclude=("flat", "box", "sphere", "cylinder")) == "box"
+
+
+def test_the_flower_grasp_is_tried_twice_the_second_time_turned():
+    from drake_grasp.funnel.planning import retry_plan, tries_left
+    from drake_grasp.grasps import GraspPlan, GraspType
+
+    assert tries_left("precision", ()) and tries_left("precision", ("precision",))
+    assert not tries_left("precision", ("precision", "box", "precision"))
+    assert tries_left("box", ("precision",)) and not tries_left("box", ("box",))
+    plan = GraspPlan(GraspType.PRECISION, 0.0, RigidTransform([0.5, 0.0, 0.1]))
+    assert retry_plan(plan, ()) is plan
+    turned = retry_plan(plan, ("box", "precision"))
+    assert turned.X_WP_target.translation() == pytest.approx([0.5, 0.0, 0.1])
+    # F3 goes to the side F1 and F2 were: the palm's closing axis reversed.
+    assert turned.X_WP_target.rotation().col(1) == pytest.approx(-plan.X_WP_target.rotation().col(1))
 
 
 def test_only_the_algorithms_own_choice_tries_again():
@@ -113,10 +143,10 @@ def test_a_held_grasp_is_seen_held_and_not_tried_again(short_scenario):
     assert len(record.attempts) == 1 and record.attempts[0]["sensed_held"]
 
 
-def test_a_missed_plate_is_seen_missed_and_tried_again_with_the_next_grasp(short_scenario, tmp_path):
+def test_a_missed_plate_is_seen_missed_and_tried_again(short_scenario, tmp_path):
     """A 10 x 6 x 0.6 cm plate: the flower grasp drops it (a plate under about 6.5 mm; docs/design.md
-    §5.4f); the camera sees nothing rise, so a second attempt looks again and executes the next grasp
-    of the decision."""
+    §5.4f); the camera sees nothing rise, so a second attempt looks again and executes the decision's
+    next candidate: the flower grasp's second try, turned (`funnel.planning.TRIES`)."""
     import trimesh
 
     from drake_grasp.objects import resolve_user_object
@@ -130,7 +160,7 @@ def test_a_missed_plate_is_seen_missed_and_tried_again_with_the_next_grasp(short
     record = run_compliant_attempts(scenario, resolve_user_object(str(path)), seed=1, attempts=2)
     first, second = record.attempts
     assert first["grasp"] == "precision" and not first["success"] and first["sensed_held"] is False
-    assert second["grasp"] != "precision"
+    assert second["grasp"] == "precision"
     assert record.grasp == second["grasp"] and record.success == second["success"]
     assert not first_attempt_success(record)
     assert record.sim_time == pytest.approx(first["sim_time"] + second["sim_time"])

@@ -110,7 +110,8 @@ class CompliantGraspSupervisor(GraspExecutor):
             estimate_error: a known error added to the estimate before the grasp is computed from it.
             grasp_search: the funnel search's choices (`funnel.search`; it reads `height_map`); None:
                 each grasp at its primitive's pose, as the paper.
-            exclude: grasps that already failed on this object (a later attempt: `trial.attempts`).
+            exclude: grasps that already failed on this object, once per failure (a later attempt:
+                `trial.attempts`; `funnel.planning.choose_grasp`).
         """
         self._estimate_error = estimate_error
         self._exclude = tuple(exclude)
@@ -200,7 +201,7 @@ def AddCompliantGraspSupervisor(builder: DiagramBuilder, station, primitives, se
         forced_grasp: execute this grasp instead of the chosen one.
         estimate_error: a known error added to the estimate before the grasp is computed from it.
         grasp_search: the funnel search's choices (the scenario's `perception.grasp_search`).
-        exclude: grasps that already failed on this object (a later attempt).
+        exclude: grasps that already failed on this object, once per failure (a later attempt).
     """
     station_system = station.diagram
     switch = builder.AddNamedSystem("arm_command_switch", PortSwitch(14))

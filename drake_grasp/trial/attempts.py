@@ -12,7 +12,9 @@ could not reach any candidate of the grasp, the next attempt begins:
   tipped over);
 * the next candidate: the decision runs without the grasps that already failed on this object
   (`primitives.decision.choose_shape`'s `exclude`), so the next attempt executes the next grasp in the
-  decision's order, at its own best pose on the new estimate.
+  decision's order, at its own best pose on the new estimate. The flower grasp alone gets a second
+  try, turned a half-turn about its approach, before the decision runs without it
+  (`funnel.planning.TRIES`): the from-above grasps cannot reach the small and thin objects it is for.
 
 It stops at the first attempt the camera sees hold, when the object is no longer found or the estimate
 cannot place a grasp, or after N attempts. The record is the last attempt's (its success is the
@@ -68,7 +70,7 @@ def run_compliant_attempts(scenario: Scenario, spec: ObjectSpec, *, seed: int, a
         done.append(record)
         if k == attempts - 1 or not should_try_again(record):
             break
-        if record.grasp and record.grasp not in failed_grasps:
+        if record.grasp:
             failed_grasps.append(record.grasp)
         if trial.run is not None and trial.run.X_WO_end is not None:  # the object stays where it was left
             X = trial.run.X_WO_end

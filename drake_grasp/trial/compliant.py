@@ -58,7 +58,7 @@ def run_compliant_branches(scenario: Scenario, spec: ObjectSpec, *, seed: int, g
                            estimate_error: EstimateError | None = None, exclude: tuple = ()) -> list[Assembled]:
     """The trials of `run_compliant_trials` as run (`assembly.Assembled`: each record, and what its
     simulation saw), for callers that go on from where a trial left the object (`trial.attempts`).
-    `exclude`: grasps that already failed on this object, which the decision runs without."""
+    `exclude`: grasps that already failed on this object, once per failure (`funnel.planning.choose_grasp`)."""
     config = perception_config or scenario.perception
     nominal = np.array([scenario.object.x, scenario.object.y, 0.0])  # where the object is expected
 
@@ -111,8 +111,9 @@ def _compliant_record(trial: Assembled, lift_height: float, slip_distance: float
             top = float(seen.center[2]) + seen.half_extent_along(np.array([0.0, 0.0, 1.0]))
             in_hand = None if run.depth_at_hold is None else (run.depth_at_hold, run.depth_at_end)
             lifted = None if run.depth_at_lift is None else (run.depth_at_lift, run.depth_at_end)
+            proximal = record.finger_angles[1:4] if len(record.finger_angles) >= 4 else None
             record.sensed = sense_hold(run.seen_points, top, lift_height, seen.table_height, in_hand,
-                                       slip_distance, lifted).to_dict()
+                                       slip_distance, lifted, proximal).to_dict()
         if estimate.found and run.X_WO_decision is not None:
             errors = compare(estimate, ground_truth(spec, run.X_WO_decision))
             record.estimate_errors = {
