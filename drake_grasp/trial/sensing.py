@@ -81,7 +81,8 @@ class Sensed:
         slid: how far the object moved along the camera's axis over the hold (`depth_change`), m (NaN
             when the hold's start was not seen, or too few pixels saw it both times).
         rose_short: how much less than the hand the object rose from the lift's start to the end
-            (`depth_change`: its depth in the camera's view grows by that much), m (NaN likewise).        unseen_in_hand: the camera saw none of the object and a finger stopped short of its limit:
+            (`depth_change`: its depth in the camera's view grows by that much), m (NaN likewise).
+        unseen_in_hand: the camera saw none of the object and a finger stopped short of its limit:
             taken for held.
     """
 
