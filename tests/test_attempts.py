@@ -70,21 +70,6 @@ def test_a_tall_object_left_on_the_table_is_not_held_though_its_sides_stand_high
     assert sense_hold(sides, top, lift, table, lift_depths=(at_lift, risen)).held
 
 
-def test_an_unseen_object_is_held_only_when_a_finger_is_blocked():
-    # A small object held by the flower grasp can be hidden whole by the fingers. Lifted clear of the
-    # table, a finger that closed on nothing runs to its limit (140 deg); one stopped short is blocked.
-    top, lift, unseen = 0.02, 0.10, np.zeros((0, 3))
-    closed = np.radians([139.0, 140.0, 138.0])
-    blocked = np.radians([138.0, 137.0, 107.0])
-    assert not sense_hold(unseen, top, lift).held
-    assert not sense_hold(unseen, top, lift, proximal_angles=closed).held
-    sensed = sense_hold(unseen, top, lift, proximal_angles=blocked)
-    assert sensed.held and sensed.unseen_in_hand and sensed.pixels == 0
-    # Seen: the camera decides, whatever the fingers.
-    left = np.column_stack([np.zeros(50), np.zeros(50), np.linspace(0.0, 0.02, 50)])
-    assert not sense_hold(left, top, lift, proximal_angles=blocked).held
-
-
 def test_a_later_attempt_finds_the_object_where_the_last_one_left_it():
     from drake_grasp.objects import resolve_object
 

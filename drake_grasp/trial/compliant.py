@@ -111,9 +111,8 @@ def _compliant_record(trial: Assembled, lift_height: float, slip_distance: float
             top = float(seen.center[2]) + seen.half_extent_along(np.array([0.0, 0.0, 1.0]))
             in_hand = None if run.depth_at_hold is None else (run.depth_at_hold, run.depth_at_end)
             lifted = None if run.depth_at_lift is None else (run.depth_at_lift, run.depth_at_end)
-            proximal = record.finger_angles[1:4] if len(record.finger_angles) >= 4 else None
             record.sensed = sense_hold(run.seen_points, top, lift_height, seen.table_height, in_hand,
-                                       slip_distance, lifted, proximal).to_dict()
+                                       slip_distance, lifted).to_dict()
         if estimate.found and run.X_WO_decision is not None:
             errors = compare(estimate, ground_truth(spec, run.X_WO_decision))
             record.estimate_errors = {

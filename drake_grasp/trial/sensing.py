@@ -4,8 +4,8 @@ A real WAM and BH8 do not know where the object is; the simulator's contact resu
 true pose are not sensors. What they can tell: the finger joint angles and motor efforts, the arm's
 joint torques, and the wrist camera. The finger angles alone do not tell a hold from a miss (a plate
 missed by an earlier precision grasp ended with its proximal joints at 0.95 rad, as a held ring did at
-1.04 rad: fingers that stopped on the table look like fingers that stopped on the object), so the
-test is the camera's:
+1.04 rad: the flower grasp's gentle close freezes a finger where it stopped, on the table or on the
+object), so the test is the camera's:
 
 * at the end of the attempt (after the lift and the hold), the wrist camera's depth image is taken;
   the object's pixels (the same segmentation the exploration uses: the label image) are back-projected
@@ -25,13 +25,9 @@ grew by `LIFTED_FRACTION` of the lift height or more was left behind, whatever i
 heights say (a 17.8 cm union that never rose showed sides whose lowest visible points stood 6.8 cm
 above the table, over the bottom test's threshold: novel seed 31337).
 
-Except when the camera sees none of it: a small object held by the flower grasp can be hidden whole
-by the fingers (a 3.4 cm ring; a 3 cm blob), and "unseen" alone would count it as not held, so that the
-next attempt opens the hand and loses it. Then the fingers tell: 10 cm above the table, a finger that
-closed on nothing runs to its joint limit (measured: 137-140° on every miss and drop looked at, box,
-cylindrical, spherical and flower grasps), and one held more than `BLOCKED_MARGIN` short of it is
-blocked by something in the hand (a held 3 cm ring: 107°; a held 3 cm blob: 101° and 124°). An unseen
-object with a blocked finger is taken for held (`Sensed.unseen_in_hand`).
+An object the camera sees none of is not held, though the fingers can hide a small one whole (a
+3.4 cm ring held by the flower grasp): the finger angles and motor torques were tried as the tie-break
+and do not tell (docs/design.md §5.4h), so such an attempt is tried again and the object may be lost.
 
 And the object must not have slid in the hand over the hold: the camera also looks as the hold
 begins, and an object that moved `slip_distance` (the success test's obvious slip, 1 cm) or more
@@ -50,20 +46,17 @@ and hold (simulated seconds, not wall minutes) before the next attempt.
 from __future__ import annotations
 
 import dataclasses
-import math
 
 import numpy as np
 
 from drake_grasp.primitives import table_top
 from drake_grasp.primitives.camera_model import CameraIntrinsics
-from drake_grasp.robot.hand import PROXIMAL_LIMITS
 
 LIFTED_FRACTION = 0.5  # of the lift height: the object's top must have risen this much to count as held
 TOP_PERCENTILE = 95  # the visible object's top: this percentile of its points' heights (robust to a stray pixel)
 BOTTOM_PERCENTILE = 5  # the visible object's bottom, likewise
 SLIP_DISTANCE = 0.01  # m: the success test's obvious slip (the scenario's protocol.slip_distance)
 MIN_COMMON_PIXELS = 50  # pixels seeing the object both as the hold began and at its end, to compare them
-BLOCKED_MARGIN = math.radians(10.0)  # a proximal joint this far short of its limit is blocked (rad)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -82,8 +75,6 @@ class Sensed:
             when the hold's start was not seen, or too few pixels saw it both times).
         rose_short: how much less than the hand the object rose from the lift's start to the end
             (`depth_change`: its depth in the camera's view grows by that much), m (NaN likewise).
-        unseen_in_hand: the camera saw none of the object and a finger stopped short of its limit:
-            taken for held.
     """
 
     held: bool
@@ -94,7 +85,6 @@ class Sensed:
     expected_bottom: float = float("nan")
     slid: float = float("nan")
     rose_short: float = float("nan")
-    unseen_in_hand: bool = False
 
     def to_dict(self) -> dict:
         return dataclasses.asdict(self)
@@ -138,31 +128,21 @@ def depth_change(start: np.ndarray, end: np.ndarray, min_pixels: int = MIN_COMMO
     return float(np.median(end[both] - start[both]))
 
 
-def fingers_blocked(proximal_angles) -> bool:
-    """Whether a finger stopped more than `BLOCKED_MARGIN` short of its closing limit (proximal angles,
-    rad): with the hand lifted clear of the table, only something in the hand blocks it."""
-    return bool(np.any(np.asarray(proximal_angles, float) < PROXIMAL_LIMITS[1] - BLOCKED_MARGIN))
-
-
 def sense_hold(points_W: np.ndarray, top_before: float, lift_height: float,
                table_z: float | None = None, hold_depths: tuple[np.ndarray, np.ndarray] | None = None,
                slip_distance: float = SLIP_DISTANCE,
-               lift_depths: tuple[np.ndarray, np.ndarray] | None = None,
-               proximal_angles=None) -> Sensed:
+               lift_depths: tuple[np.ndarray, np.ndarray] | None = None) -> Sensed:
     """Whether the object is held (module docstring): its visible points' top against the top the
     exploration measured before the grasp (m, world z) and the lift height (m); where the table's
     height `table_z` (m) is given, its visible points' bottom against the table; and where
     `hold_depths` gives the object's depth images (`in_hand_depth`) as the hold began and at its end,
     how far it moved in the hand along the camera's axis (`depth_change`), against `slip_distance` (m);
     and where `lift_depths` gives them as the lift began and at the end, whether it was left behind:
-    its depth grew by `LIFTED_FRACTION` of the lift height or more. Where the camera sees none of it,
-    the fingers' proximal angles at the end (`proximal_angles`, rad, three) tell whether something is
-    in the hand (`fingers_blocked`)."""
+    its depth grew by `LIFTED_FRACTION` of the lift height or more."""
     expected = float(top_before) + LIFTED_FRACTION * float(lift_height)
     expected_bottom = float("nan") if table_z is None else float(table_z) + LIFTED_FRACTION * float(lift_height)
     if len(points_W) == 0:
-        in_hand = proximal_angles is not None and fingers_blocked(proximal_angles)
-        return Sensed(in_hand, 0, float("nan"), expected, float("nan"), expected_bottom, unseen_in_hand=in_hand)
+        return Sensed(False, 0, float("nan"), expected, float("nan"), expected_bottom)
     heights = np.asarray(points_W)[:, 2]
     top = float(np.percentile(heights, TOP_PERCENTILE))
     bottom = float(np.percentile(heights, BOTTOM_PERCENTILE))
