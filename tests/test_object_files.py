@@ -58,6 +58,32 @@ def test_cells_that_share_faces_are_one_object_with_the_exact_volume():
     assert len(result.components) == 1 and result.components[0].volume == pytest.approx(2 * 0.04**3, rel=1e-6)
 
 
+def test_a_closed_mesh_with_a_t_junction_sliver_keeps_its_volume():
+    """A box whose top has a vertex on its edge with the front, closed by a zero-area triangle (a
+    T-junction sliver, as a boolean union rounded to micrometres leaves): dropping the sliver would
+    open a slit, so it is kept, and the solid is the box."""
+    a, b, c = 0.04, 0.03, 0.02
+    v = [(0, 0, 0), (a, 0, 0), (a, b, 0), (0, b, 0), (0, 0, c), (a, 0, c), (a, b, c), (0, b, c), (a / 2, 0, c)]
+    faces = [(0, 2, 1), (0, 3, 2), (0, 1, 5), (0, 5, 4), (3, 7, 6), (3, 6, 2), (0, 4, 7), (0, 7, 3),
+             (1, 2, 6), (1, 6, 5),
+             (4, 8, 7), (8, 5, 6), (8, 6, 7),  # the top, through the front edge's midpoint 8
+             (4, 5, 8)]  # the sliver: the front's edge 4-5 against the top's 4-8-5
+    mesh = trimesh.Trimesh(np.array(v, float), np.array(faces), process=False)
+    assert mesh.is_watertight and min(mesh.area_faces) == 0.0
+    shells, report = repair.closed_shells(mesh)
+    assert sum(s.volume for s in shells) == pytest.approx(a * b * c, rel=1e-9)
+    assert report.degenerate_faces == 0
+
+
+def test_a_generated_letter_with_a_sliver_loads():
+    from drake_grasp.objects.novel import novel_object
+
+    mesh = novel_object(2718, 24).mesh  # an L whose union left a zero-area triangle
+    assert min(mesh.area_faces) < 1e-12
+    shells, _ = repair.closed_shells(mesh)
+    assert sum(s.volume for s in shells) == pytest.approx(mesh.volume, rel=1e-6)
+
+
 def test_the_join_gap_decides_connectivity_and_the_error_names_the_smallest_gap():
     a = trimesh.creation.box((0.05, 0.05, 0.05))
     b = trimesh.creation.box((0.05, 0.05, 0.05)).apply_translation([0.053, 0.0, 0.0])  # a 3 mm gap

@@ -6,7 +6,9 @@ shared by three or more faces, flipped and duplicated faces, degenerate triangle
 between cells that share a face, and stray sheets. Mass, inertia and contact all need closed,
 outward-wound shells. The steps, each counted for the one-line note a user sees:
 
-1. weld vertices that coincide, drop degenerate triangles (repeated or collinear vertices);
+1. weld vertices that coincide, drop degenerate triangles (repeated or collinear vertices), except
+   that a collinear one in a surface that is closed with it is kept (the sliver of a T-junction:
+   dropping it opens a slit that no hole filler closes);
 2. drop duplicated faces: of two copies with the same winding one is kept; two copies with opposite
    windings are the wall between two cells that share that face, and both go (the cells become one
    shell);
@@ -310,6 +312,19 @@ def closed_shells(mesh: trimesh.Trimesh, label: str = "mesh") -> tuple[list[trim
     return shells, report
 
 
+def _closed_without(faces: np.ndarray, dropped: np.ndarray) -> bool:
+    """Whether `faces` without the `dropped` ones are a closed 2-manifold: every edge in exactly two of
+    them, once each way (consistently wound)."""
+    kept = faces[~dropped]
+    if len(kept) == 0:
+        return False
+    directed = np.concatenate([kept[:, [0, 1]], kept[:, [1, 2]], kept[:, [2, 0]]])
+    undirected = np.sort(directed, axis=1)
+    _, counts = np.unique(undirected, axis=0, return_counts=True)
+    _, directed_counts = np.unique(directed, axis=0, return_counts=True)
+    return bool(np.all(counts == 2) and np.all(directed_counts == 1))
+
+
 def _part_shells(mesh: trimesh.Trimesh, report: RepairReport, opened: list) -> list[trimesh.Trimesh]:
     """Closed shells of one part of a file (steps 1-5), counted into `report`; `opened` adds the
     volumes of the open patches before and after closing them."""
@@ -322,6 +337,12 @@ def _part_shells(mesh: trimesh.Trimesh, report: RepairReport, opened: list) -> l
     triangles = mesh.vertices[faces]
     doubled_area = np.linalg.norm(np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0]), axis=1)
     degenerate = repeated | (doubled_area <= (1e-9 * scale) ** 2)
+    if _closed_without(faces, repeated):
+        # A closed surface whose only flaw is a collinear (zero-area) triangle: it is the sliver of a
+        # T-junction (a vertex on its neighbour's edge, as a boolean union and a round to micrometres
+        # leave), and dropping it would open a slit no hole filler closes. It is kept: it adds no area
+        # and no volume.
+        degenerate = repeated
     report.degenerate_faces += int(np.count_nonzero(degenerate))
     faces = _drop_duplicates(faces[~degenerate], report)
     if len(faces) == 0:
