@@ -63,6 +63,15 @@ def main() -> int:
                                    args.count, (args.seed,))
     if args.classes:
         objects = [o for o in objects if o["class"] in keep]
+    from drake_grasp.objects import ObjectError
+    from drake_grasp.objects.names import resolve_user_object
+
+    for o in objects:  # every object loads before any trial starts: one line and exit 2 if not
+        try:
+            resolve_user_object(str(o["file"]))
+        except ObjectError as error:
+            print(f"holding_study: error: {error}", file=sys.stderr)
+            return 2
     specs = [TrialSpec(str(o["file"]), "compliant", "", s, scenario_name=n, attempts=args.attempts)
              for n in scenarios for o in objects for s in seeds]
     rows = run_trials(specs, out / "trials.csv", executor=LocalExecutor(args.workers), label="holding")

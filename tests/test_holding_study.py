@@ -1,0 +1,36 @@
+"""scripts/holding_study.py refuses what it cannot run in one line, exit code 2, before any trial."""
+
+import pathlib
+import subprocess
+import sys
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+SHEET = "v 0 0 0\nv 0.05 0 0\nv 0 0.05 0\nv 0 0 0.05\nf 1 2 3\nf 1 2 4\n"  # two triangles: no solid
+
+
+def _study(out, *extra):
+    return subprocess.run([sys.executable, str(ROOT / "scripts" / "holding_study.py"), "--objects", "novel",
+                           "--count", "7", "--seed", "0", "--seeds", "1", "--attempts", "1",
+                           "--scenarios", "funnel", "--workers", "1", "--out", str(out), *extra],
+                          capture_output=True, text=True, timeout=300)
+
+
+def test_an_unknown_class_is_refused(tmp_path):
+    done = _study(tmp_path / "out", "--classes", "blob,teapot")
+    assert done.returncode == 2
+    assert done.stderr.strip().count("\n") == 0 and "--classes" in done.stderr
+    assert not (tmp_path / "out" / "trials.csv").exists()
+
+
+def test_an_object_that_does_not_load_is_refused_before_any_trial(tmp_path):
+    out = tmp_path / "out"
+    made = subprocess.run([sys.executable, "-m", "drake_grasp.cli", "objects", "generate", "--kind", "novel",
+                           "--count", "7", "--seed", "0", "--out", str(out / "objects")],
+                          capture_output=True, text=True, timeout=300)
+    assert made.returncode == 0, made.stderr
+    (out / "objects" / "blob_0_000.obj").write_text(SHEET)
+    done = _study(out)
+    assert done.returncode == 2
+    assert done.stderr.strip().count("\n") == 0
+    assert "blob_0_000.obj" in done.stderr and "sheet" in done.stderr
+    assert not (out / "trials.csv").exists()
