@@ -23,7 +23,10 @@ it, still low). The camera rides on the palm, so an object that rose with the ha
 pixel by pixel, while one left on the table is as much deeper as the hand rose. An object whose depth
 grew by `LIFTED_FRACTION` of the lift height or more was left behind, whatever its visible sides'
 heights say (a 17.8 cm union that never rose showed sides whose lowest visible points stood 6.8 cm
-above the table, over the bottom test's threshold: novel seed 31337).
+above the table, over the bottom test's threshold: novel seed 31337). Pixel by pixel holds while the
+camera rises along its own axis, as it does with the palm level; with the palm tilted (the upright
+grasp from the arm's side) the camera moves across its view as well, and a 16.5 cm bottle that never
+rose measured -2 to -5 cm and was taken for held (everyday seed 8080). Not yet mended.
 
 An object the camera sees none of is not held, though the fingers can hide a small one whole (a
 3.4 cm ring held by the flower grasp): the finger angles and motor torques were tried as the tie-break
