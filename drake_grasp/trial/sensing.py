@@ -26,7 +26,8 @@ heights say (a 17.8 cm union that never rose showed sides whose lowest visible p
 above the table, over the bottom test's threshold: novel seed 31337). Pixel by pixel holds while the
 camera rises along its own axis, as it does with the palm level; with the palm tilted (the upright
 grasp from the arm's side) the camera moves across its view as well, and a 16.5 cm bottle that never
-rose measured -2 to -5 cm and was taken for held (everyday seed 8080). Not yet mended.
+rose measured -2 to -5 cm and was taken for held (everyday seed 8080). Not yet mended (docs/design.md
+§5.4h says what was tried).
 
 An object the camera sees none of is not held, though the fingers can hide a small one whole (a
 3.4 cm ring held by the flower grasp): the finger angles and motor torques were tried as the tie-break
