@@ -312,17 +312,11 @@ def closed_shells(mesh: trimesh.Trimesh, label: str = "mesh") -> tuple[list[trim
     return shells, report
 
 
-def _closed_without(faces: np.ndarray, dropped: np.ndarray) -> bool:
-    """Whether `faces` without the `dropped` ones are a closed 2-manifold: every edge in exactly two of
-    them, once each way (consistently wound)."""
-    kept = faces[~dropped]
-    if len(kept) == 0:
-        return False
-    directed = np.concatenate([kept[:, [0, 1]], kept[:, [1, 2]], kept[:, [2, 0]]])
-    undirected = np.sort(directed, axis=1)
-    _, counts = np.unique(undirected, axis=0, return_counts=True)
-    _, directed_counts = np.unique(directed, axis=0, return_counts=True)
-    return bool(np.all(counts == 2) and np.all(directed_counts == 1))
+def _closed_without(mesh: trimesh.Trimesh, dropped: np.ndarray) -> bool:
+    """Whether `mesh`'s faces without the `dropped` ones are a closed, consistently wound 2-manifold
+    (trimesh's watertight and winding checks)."""
+    kept = trimesh.Trimesh(mesh.vertices, mesh.faces[~dropped], process=False)
+    return len(kept.faces) > 0 and kept.is_watertight and kept.is_winding_consistent
 
 
 def _part_shells(mesh: trimesh.Trimesh, report: RepairReport, opened: list) -> list[trimesh.Trimesh]:
@@ -337,7 +331,7 @@ def _part_shells(mesh: trimesh.Trimesh, report: RepairReport, opened: list) -> l
     triangles = mesh.vertices[faces]
     doubled_area = np.linalg.norm(np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0]), axis=1)
     degenerate = repeated | (doubled_area <= (1e-9 * scale) ** 2)
-    if _closed_without(faces, repeated):
+    if _closed_without(mesh, repeated):
         # A closed surface whose only flaw is a collinear (zero-area) triangle: it is the sliver of a
         # T-junction (a vertex on its neighbour's edge, as a boolean union and a round to micrometres
         # leave), and dropping it would open a slit no hole filler closes. It is kept: it adds no area
