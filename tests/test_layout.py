@@ -81,7 +81,7 @@ def test_the_sweep_machinery_imports_no_study():
 
 
 # A study module (one experiment) against its helpers: pure analysis, reports, the results page.
-STUDY_MODULES = ("fig4", "fig6", "fig7", "novel", "sensitivity", "capture", "epsilon_physics", "near_primitives", "estimates",
+STUDY_MODULES = ("fig4", "fig4_flower", "fig6", "fig7", "novel", "sensitivity", "capture", "epsilon_physics", "near_primitives", "estimates",
                  "exploration",
                  "reproduce")
 HELPERS = ("calibration", "capture_region", "replays", "report_page", "near_primitives_report", "sensitivity_report",

@@ -135,6 +135,10 @@ def test_primitive_families():
     assert objects.resolve_object("cylinder:0.1") == cylinder
     assert objects.resolve_object("cylinder:0.1x0.3") == cylinder
     assert objects.resolve_object("bottle_case") == objects.paper_object("bottle_case")
+    domino = objects.resolve_object("box:0.05x0.025x0.01")
+    assert domino.extents == pytest.approx((0.05, 0.025, 0.01)) and domino.rest_height == pytest.approx(0.005)
+    assert domino.mass == pytest.approx(objects.DEFAULT_DENSITY * 0.05 * 0.025 * 0.01)
+    assert domino.principal_axis == pytest.approx((1.0, 0.0, 0.0)) and domino.closest_primitive == "box"
 
 
 def test_contact_parameters_load_from_yaml():
@@ -223,7 +227,7 @@ def test_paper_object_rests_on_table(name, time_step, caplog):
 
 
 @pytest.mark.parametrize(
-    "name", ["sphere:0.03", "cube:0.02", "cube:0.3", "cylinder:0.03", "cylinder:0.3"]
+    "name", ["sphere:0.03", "cube:0.02", "cube:0.3", "cylinder:0.03", "cylinder:0.3", "box:0.05x0.025x0.01"]
 )
 def test_primitive_family_rests_on_table(name):
     spec = objects.resolve_object(name)
@@ -403,6 +407,7 @@ def test_unknown_names_and_bad_primitives():
     _assert_one_line_error(
         lambda: objects.resolve_object("sphere:big"), "sphere:big", "sphere:DIAMETER"
     )
+    _assert_one_line_error(lambda: objects.resolve_object("box:0.05x0.02"), "box:0.05x0.02", "box:LENGTHxWIDTHxHEIGHT")
     _assert_one_line_error(lambda: objects.paper_object("teapot"), "teapot", "banana")
 
 

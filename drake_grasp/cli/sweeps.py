@@ -22,11 +22,15 @@ def add_fig4(sub) -> None:
         help="Fig. 4: quasi-static grasps of spheres, cubes, cylinders and plates; eps over size and pose error",
         description="Sweeps object size and hand pose error for spheres (spherical mode), cubes and "
         "cylinders (cylindrical mode), and, for the flower, plates 4-40 mm thick on a table (the precision "
-        "grasp): approach until contact, close with breakaway, score with the eps metric. Writes fig4.csv "
-        "(one row per grasp), fig4.png and fig4.svg; resumable.",
+        "grasp that the flower grasp replaced, palm held by position): approach until contact, close with "
+        "breakaway, score with the eps metric. Then the flower in full dynamics: the flower grasp on plates, "
+        "sticks and small cubes, each a trial from the true pose shifted along x or y. Writes fig4.csv "
+        "(one row per grasp), fig4.png and fig4.svg, fig4_flower.csv (one row per trial), fig4_flower.png "
+        "and fig4_flower.svg; resumable.",
     )
     fig4.add_argument("--quick", action="store_true",
-                      help="9 sizes (4 plate thicknesses) x 7 errors instead of 27 (10) x 21")
+                      help="9 sizes (4 plate thicknesses) x 7 errors instead of 27 (10) x 21; the flower: 3 sizes "
+                      "per family x 5 errors x 1 seed instead of 5 x 13 x 2")
     add_executor_args(fig4)
     add_common(fig4, scenario=False, seed=False)
     fig4.set_defaults(run=_run_fig4, out_default="out/fig4")
@@ -187,25 +191,37 @@ def _run_fig4(args) -> int:
     from drake_grasp.studies import fig4
     from drake_grasp.sweeps.lock import results_lock
 
+    from drake_grasp.studies import fig4_flower
+    from drake_grasp.sweeps.results import check_results_file
+    from drake_grasp.sweeps.runner import TRIAL_FIELDS
+
     executor = check_sweep_args(args)
     config = fig4.Fig4Config.quick() if args.quick else fig4.Fig4Config.full()
+    flower = fig4_flower.FlowerConfig.quick() if args.quick else fig4_flower.FlowerConfig.full()
     out = check_out_dir(args.out or args.out_default)
     start = time.perf_counter()
     with results_lock(out), executor:
+        check_results_file(out / "fig4.csv", fig4.FIELDS)
+        check_results_file(out / "fig4_flower.csv", TRIAL_FIELDS)
         rows = fig4.run_fig4(config, out, executor=executor)
         summaries = fig4.summarise(rows)
         figures = fig4.plot(summaries, out)
-    lines = fig4.summary_lines(summaries, rows)
+        flower_results = fig4_flower.run_flower(flower, out, executor=executor)
+        flower_maps = fig4_flower.summarise(flower_results)
+        figures += fig4_flower.plot(flower_maps, out)
+    lines = fig4.summary_lines(summaries, rows) + fig4_flower.summary_lines(flower_maps, flower_results)
     wall = time.perf_counter() - start
     if args.json:
         print(json.dumps({
-            "csv": str(out / "fig4.csv"), "figures": [str(p) for p in figures], "grasps": len(rows),
+            "csv": str(out / "fig4.csv"), "flower_csv": str(out / "fig4_flower.csv"),
+            "figures": [str(p) for p in figures], "grasps": len(rows), "flower_trials": len(flower_results),
             "wall_time": wall, "peak_size": {k: s.peak_size() for k, s in summaries.items()}, "summary": lines,
         }))
     else:
         for line in lines:
             print(line)
-        print(f"fig4: {len(rows)} grasps in {wall:.0f} s; {out / 'fig4.csv'}, {figures[0]}, {figures[1]}")
+        print(f"fig4: {len(rows)} quasi-static grasps and {len(flower_results)} flower trials in {wall:.0f} s; "
+              f"{out / 'fig4.csv'}, {out / 'fig4_flower.csv'}, {figures[0]}, {figures[2]}")
     return 0
 
 

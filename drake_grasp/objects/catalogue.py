@@ -298,6 +298,28 @@ def _box_family(name: str, size: tuple, mass: float | None, density: float, rgba
                       rgba=rgba)
 
 
+def box_object(
+    length: float,
+    width: float,
+    height: float,
+    *,
+    mass: float | None = None,
+    density: float = DEFAULT_DENSITY,
+    rgba=YELLOW_PAPER_RGBA,
+) -> ObjectSpec:
+    """A solid box resting on a face, `length` along O's x, `width` along y, `height` up (m): a
+    domino, a tile, a book, named e.g. ``box_50mmx25mmx10mm``.
+
+    Args:
+        length, width, height: Edges along O's x, y and z (m).
+        mass: Mass (kg); default density × volume.
+        density: Density (kg/m³) used when `mass` is None; default DEFAULT_DENSITY (assumed).
+        rgba: Visual colour.
+    """
+    _check_size("box", length=length, width=width, height=height)
+    return _box_family(f"box_{_mm(length)}x{_mm(width)}x{_mm(height)}", (length, width, height), mass, density, rgba)
+
+
 # The footprint of Fig. 4's flower family (a plate lying flat, the paper's "flower": small and flat), m:
 # about the generated plates' (`objects.flower`), wider than the hand's closed fingertips are apart.
 PLATE_FAMILY_FOOTPRINT = (0.08, 0.05)

@@ -10,7 +10,7 @@ import re
 from pathlib import Path
 
 from drake_grasp.objects.catalogue import (
-    PAPER_OBJECTS, _PAPER_FACTORIES, cube_object, cylinder_object, paper_object, sphere_object,
+    PAPER_OBJECTS, _PAPER_FACTORIES, box_object, cube_object, cylinder_object, paper_object, sphere_object,
 )
 from drake_grasp.objects.mesh_files import object_from_mesh
 from drake_grasp.objects.spec import ObjectError, ObjectSpec
@@ -21,8 +21,9 @@ _PRIMITIVE_PATTERNS = {
     "sphere": re.compile(rf"sphere:{_NUMBER}"),
     "cube": re.compile(rf"cube:{_NUMBER}"),
     "cylinder": re.compile(rf"cylinder:{_NUMBER}(?:x{_NUMBER})?"),
+    "box": re.compile(rf"box:{_NUMBER}x{_NUMBER}x{_NUMBER}"),
 }
-_PRIMITIVE_HELP = "sphere:DIAMETER, cube:EDGE, cylinder:DIAMETER[xLENGTH] (metres)"
+_PRIMITIVE_HELP = "sphere:DIAMETER, cube:EDGE, cylinder:DIAMETER[xLENGTH], box:LENGTHxWIDTHxHEIGHT (metres)"
 
 
 def resolve_object(name_or_path: str | os.PathLike, **kw) -> ObjectSpec:
@@ -31,7 +32,8 @@ def resolve_object(name_or_path: str | os.PathLike, **kw) -> ObjectSpec:
     Args:
         name_or_path: A catalogue name (``PAPER_OBJECTS``); a primitive string such as
             ``sphere:0.12``, ``cube:0.08``, ``cylinder:0.1x0.3`` or ``cylinder:0.1`` (metres;
-            length default CYLINDER_FAMILY_LENGTH); or the path of a mesh (any format trimesh
+            length default CYLINDER_FAMILY_LENGTH: lying along x), ``box:0.05x0.025x0.01`` (length
+            along x, width, height; resting on a face); or the path of a mesh (any format trimesh
             reads, a MuJoCo ``.msh``, Drake's tetrahedral ``.vtk``) or an ``.sdf``/``.urdf``/MJCF
             model file.
         **kw: Passed on to :func:`paper_object`, :func:`sphere_object` (etc.),
@@ -59,6 +61,8 @@ def resolve_object(name_or_path: str | os.PathLike, **kw) -> ObjectSpec:
             return sphere_object(*values, **kw)
         if kind == "cube":
             return cube_object(*values, **kw)
+        if kind == "box":
+            return box_object(*values, **kw)
         return cylinder_object(*values, **kw)
     path = Path(text).expanduser()
     if path.suffix or os.sep in text or "/" in text or path.exists():
