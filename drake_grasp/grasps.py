@@ -69,6 +69,26 @@ FLOWER_FORCE = 15.0
 # The range of the preshape's proximal angle, rad: from where the tips still point down (below 40 deg
 # they would land flat) to where they nearly meet under the palm.
 FLOWER_PRESHAPE_RANGE = (math.radians(40.0), math.radians(85.0))
+# The flower grasp's two-finger pinch (docs/design.md §5.4f). At the cylindrical spread F1 and F2 sit
+# 25 mm either side of the closing plane (hand.AW) and their 23 mm pads cover 13.5-36.5 mm from it: an
+# object whose footprint is shorter than PINCH_MAX_LENGTH along that line passes between them, and only
+# F3 touches it (2-2.5 cm cubes and standing dominoes were missed or dropped at every seed). At a 90 deg
+# spread F1 and F2 face each other on one line through the palm centre; F3 stays open and they pinch
+# the object's sides. The tips' rounded ends meet a side lower than PINCH_MIN_HEIGHT with a contact
+# normal pointing down into it, and ride over it (oracle, seeds 1-2: 2.5 cm squares 12 and 15 mm tall
+# dropped, 18 and 22 mm held; the three-finger flower, which holds low objects, is kept for those).
+PINCH_SPREAD = math.pi / 2
+PINCH_MAX_LENGTH = 0.035
+PINCH_MIN_HEIGHT = 0.018
+# Its preshape range: the pinching tips start 25 mm further out than at the cylindrical spread
+# (their knuckles are 75 mm from the centre), so they reach an object's sides at larger angles.
+PINCH_PRESHAPE_RANGE = (math.radians(40.0), math.radians(100.0))
+# Two fingertips let the object turn about the line through them. The WAM lifts with joints whose axes
+# lie across its reach (shoulder, elbow and wrist pitch), so the palm pitches about that direction as
+# it lifts: a pinch across the reach lets the object swing, one along it does not. On a footprint
+# whose sides are within this ratio, the pinch runs along the reach (a 2 cm cube pinched across the
+# reach turned 0.5 rad and fell at two of three seeds; along it, held at all three).
+PINCH_SQUARE = 1.25
 # Approaches within this angle of the vertical are "from above" for the table clearance.
 _FROM_ABOVE = math.radians(45.0)
 _DOWN = np.array([0.0, 0.0, -1.0])
@@ -169,6 +189,9 @@ class GraspPlan:
             through the lift and the hold (the paper's). False: a gentle close under the breakaway
             torque, each finger stopping at its first contact, then held there through the lift and
             the hold (the flower grasp: `control.grasp_executor`, docs/design.md §5.4f).
+        thumb_closes: whether F3 closes with F1 and F2. False only for a gentle close (`breakaway`
+            False): F3 then stays at its preshape while F1 and F2 close (the flower grasp's two-finger
+            pinch, `PINCH_SPREAD`).
     """
 
     grasp: GraspType | None
@@ -179,6 +202,7 @@ class GraspPlan:
     finger_preshape: tuple[float, ...] = (0.0,) * 6
     palm_force: float = 0.0
     breakaway: bool = True
+    thumb_closes: bool = True
 
     @property
     def compliant_arm(self) -> bool:
@@ -289,16 +313,39 @@ def box_grasp(estimate: ObjectEstimate) -> GraspPlan:
     return GraspPlan(GraspType.BOX, spread, RigidTransform(R_WP, target))
 
 
-def flower_landing_angle(half_width: float, spread: float) -> float:
-    """The largest coupled proximal angle (rad, whole degrees within FLOWER_PRESHAPE_RANGE) at which the
-    fingertips' lowest centimetre lands at least `half_width` + FLOWER_MARGIN from the palm's closing
-    plane (`hand.fingertip_reach`); the range's low end if none does (a wide object)."""
-    low, high = (round(math.degrees(a)) for a in FLOWER_PRESHAPE_RANGE)
+def flower_landing_angle(half_width: float, spread: float, fingers: tuple = hand.FINGERS,
+                         preshape_range: tuple = FLOWER_PRESHAPE_RANGE) -> float:
+    """The largest coupled proximal angle (rad, whole degrees within `preshape_range`) at which the
+    closing `fingers`' tips' lowest centimetre lands at least `half_width` + FLOWER_MARGIN from the
+    palm's centre line (`hand.fingertip_reach`); the range's low end if none does (a wide object)."""
+    low, high = (round(math.degrees(a)) for a in preshape_range)
     for degrees in range(high, low - 1, -1):
         angle = math.radians(degrees)
-        if hand.fingertip_reach(angle, spread) >= half_width + FLOWER_MARGIN:
+        if hand.fingertip_reach(angle, spread, fingers=fingers) >= half_width + FLOWER_MARGIN:
             return angle
     return math.radians(low)
+
+
+def flower_pinches(estimate: ObjectEstimate) -> bool:
+    """Whether the flower grasp pinches with two fingers (`PINCH_SPREAD`): the estimate's footprint is
+    shorter than PINCH_MAX_LENGTH along its long side, and it stands at least PINCH_MIN_HEIGHT above
+    the table."""
+    R = np.asarray(estimate.R_WB, float)
+    size = np.asarray(estimate.size, float)
+    _, long_axis, _ = _top_face_axes(R, size)
+    height = float(np.asarray(estimate.center)[2]) + estimate.half_extent_along(-_DOWN) - estimate.table_height
+    return estimate.half_extent_along(R[:, long_axis]) * 2 < PINCH_MAX_LENGTH and height >= PINCH_MIN_HEIGHT
+
+
+def _pinch_axis(estimate: ObjectEstimate, long_axis: int, short_axis: int) -> int:
+    """The estimate's axis the two-finger pinch closes along: the footprint's shorter side, or on a
+    near-square footprint (`PINCH_SQUARE`) the side nearer the arm's reach (from `ARM_BASE_XY`)."""
+    size = np.asarray(estimate.size, float)
+    if size[long_axis] > PINCH_SQUARE * size[short_axis]:
+        return short_axis
+    R = np.asarray(estimate.R_WB, float)
+    reach = np.asarray(estimate.center, float)[:2] - ARM_BASE_XY
+    return max((short_axis, long_axis), key=lambda i: abs(float(R[:2, i] @ reach)))
 
 
 def precision_grasp(estimate: ObjectEstimate) -> GraspPlan:
@@ -309,17 +356,26 @@ def precision_grasp(estimate: ObjectEstimate) -> GraspPlan:
     side. The fingers are preshaped to `flower_landing_angle`, and the palm's target puts their deepest
     point `FLOWER_SINK` below the table, whatever the object's height: the guarded approach ends when
     the tips touch the table (or the object's top, if it is wider than the hand opens).
+
+    On a small object with sides to pinch (`flower_pinches`), F1 and F2 at `PINCH_SPREAD` face each
+    other across the footprint's shorter side and close on it; F3 stays open (its preshape 0).
     """
     R = np.asarray(estimate.R_WB, float)
-    _, long_axis, _ = _top_face_axes(R, np.asarray(estimate.size, float))
-    R_WP = _palm_rotation(_DOWN, R[:, long_axis])  # fingers close along the short side
-    spread = ComplianceMode.CYLINDRICAL.spread
-    angle = flower_landing_angle(estimate.half_extent_along(R_WP.col(1)), spread)
+    _, long_axis, short_axis = _top_face_axes(R, np.asarray(estimate.size, float))
+    if flower_pinches(estimate):
+        R_WP = _palm_rotation(_DOWN, R[:, _pinch_axis(estimate, long_axis, short_axis)])  # F1, F2 along x_P
+        spread, thumb_closes = PINCH_SPREAD, False
+        angle = flower_landing_angle(estimate.half_extent_along(R_WP.col(0)), spread, (1, 2), PINCH_PRESHAPE_RANGE)
+        preshape = (angle, angle, 0.0) + (angle * hand.DISTAL_PER_PROXIMAL,) * 2 + (0.0,)
+    else:
+        R_WP = _palm_rotation(_DOWN, R[:, long_axis])  # fingers close along the short side
+        spread, thumb_closes = ComplianceMode.CYLINDRICAL.spread, True
+        angle = flower_landing_angle(estimate.half_extent_along(R_WP.col(1)), spread)
+        preshape = (angle,) * 3 + (angle * hand.DISTAL_PER_PROXIMAL,) * 3
     palm_z = estimate.table_height + hand.fingertip_depth(angle, spread) - FLOWER_SINK
     target = np.array([estimate.center[0], estimate.center[1], palm_z], float)
-    return GraspPlan(GraspType.PRECISION, spread, RigidTransform(R_WP, target),
-                     finger_preshape=(angle,) * 3 + (angle * hand.DISTAL_PER_PROXIMAL,) * 3, palm_force=FLOWER_FORCE,
-                     breakaway=False)
+    return GraspPlan(GraspType.PRECISION, spread, RigidTransform(R_WP, target), finger_preshape=preshape,
+                     palm_force=FLOWER_FORCE, breakaway=False, thumb_closes=thumb_closes)
 
 
 COMPLIANT_GRASPS = {

@@ -1,6 +1,7 @@
 """The flower's generator: seeded, closed, and within the sizes of its classes."""
 
 import numpy as np
+import pytest
 
 from drake_grasp.objects import flower
 
@@ -107,3 +108,25 @@ def test_cli_generates_the_flower_objects(tmp_path, capsys):
     out = capsys.readouterr().out
     assert "11 flower objects (" + ", ".join(sorted(flower.CLASSES)) + ")" in out
     assert len(list(tmp_path.glob("*.obj"))) == 11
+
+
+def test_the_flower_grasp_pinches_a_2_cm_cube_that_f1_and_f2_would_straddle():
+    """A 2 cm cube (oracle pose, seed 2) under the flower grasp: F1 and F2 at a 90 deg spread pinch
+    it along the arm's reach, F3 stays open, and it is held. At the cylindrical spread F1's and F2's
+    pads pass either side of it (docs/design.md §5.4f)."""
+    from drake_grasp.grasps import PINCH_SPREAD, oracle_estimate, plan_compliant_grasp
+    from drake_grasp.objects import cube_object
+    from drake_grasp.station import load_scenario
+    from drake_grasp.trial.given_plan import run_trial
+
+    plans = []
+
+    def plan(X_WO, spec):
+        plans.append(plan_compliant_grasp("precision", oracle_estimate(X_WO, spec)))
+        return plans[-1]
+
+    record = run_trial(load_scenario(), cube_object(0.02), plan, seed=2, method="oracle", grasp="precision")
+    assert plans[0].spread == PINCH_SPREAD and not plans[0].thumb_closes
+    assert record.success, (record.failure, record.detail)
+    assert record.finger_angles[3] == pytest.approx(0.0, abs=0.02)  # F3's proximal joint stayed open
+    assert "bh_finger_1_distal" in record.contacts_at_end and "bh_finger_2_distal" in record.contacts_at_end

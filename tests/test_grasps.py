@@ -123,6 +123,48 @@ def test_the_flower_grasp_lands_the_fingertips_on_the_table_clear_of_the_object(
     assert GraspType.parse("Precision") == GraspType.PRECISION
 
 
+@pytest.mark.parametrize("size, pinches", [
+    ((0.025, 0.025, 0.025), True),  # a 2.5 cm cube: F1 and F2 would pass either side of it
+    ((0.01, 0.025, 0.05), True),  # a domino standing on its end
+    ((0.034, 0.02, 0.018), True),
+    ((0.025, 0.025, 0.015), False),  # too low to pinch: the tips ride over its sides
+    ((0.036, 0.025, 0.03), False),  # long enough for the three-finger flower
+    ((0.08, 0.05, 0.01), False),  # a plate
+])
+def test_the_flower_grasp_pinches_small_objects_with_sides_between_f1_and_f2(size, pinches):
+    """On a footprint shorter than PINCH_MAX_LENGTH with sides at least PINCH_MIN_HEIGHT tall, F1 and F2
+    at a 90 deg spread face each other across its short side and F3 stays open; else the three-finger
+    flower grasp. The pinching tips land FLOWER_MARGIN clear of the sides, FLOWER_SINK below the table."""
+    yaw = math.radians(-30)
+    plan = precision_grasp(_estimate([0.5, 0.0, size[2] / 2], size, yaw=yaw))
+    assert grasps.flower_pinches(_estimate([0.5, 0.0, size[2] / 2], size, yaw=yaw)) == pinches
+    assert plan.grasp == GraspType.PRECISION and plan.compliant_arm and not plan.breakaway
+    if not pinches:
+        assert plan.spread == ComplianceMode.CYLINDRICAL.spread and plan.thumb_closes
+        return
+    assert plan.spread == grasps.PINCH_SPREAD and not plan.thumb_closes
+    angle = plan.finger_preshape[0]
+    assert plan.finger_preshape == (angle, angle, 0.0, angle / 3, angle / 3, 0.0)
+    short = min(size[:2])
+    estimate = _estimate([0.5, 0.0, size[2] / 2], size, yaw=yaw)
+    assert estimate.half_extent_along(plan.X_WP_target.rotation().col(0)) == pytest.approx(short / 2)
+    assert hand.fingertip_reach(angle, grasps.PINCH_SPREAD, fingers=(1, 2)) >= short / 2 + FLOWER_MARGIN - 1e-9
+    assert hand.fingertip_reach(angle + math.radians(1), grasps.PINCH_SPREAD, fingers=(1, 2)) < short / 2 + FLOWER_MARGIN
+    tip_z = plan.X_WP_target.translation()[2] - hand.fingertip_depth(angle, grasps.PINCH_SPREAD)
+    assert tip_z == pytest.approx(-FLOWER_SINK, abs=1e-9)
+
+
+def test_at_a_90_degree_spread_f1_and_f2_close_on_one_line_through_the_palm_centre():
+    for spread, directions in ((0.0, {1: (0, -1), 2: (0, -1), 3: (0, 1)}),
+                               (math.pi / 2, {1: (-1, 0), 2: (1, 0), 3: (0, 1)})):
+        for finger, direction in directions.items():
+            np.testing.assert_allclose(hand.closing_direction(finger, spread), direction, atol=1e-12)
+    # At the cylindrical spread the reach is across the palm's y, as the flower grasp has always used.
+    points = hand.closing_distal_points(math.radians(70))
+    low = [p[p[:, 2] > p[:, 2].max() - 0.01] for p in points]
+    assert hand.fingertip_reach(math.radians(70)) == pytest.approx(min(np.abs(p[:, 1]).min() for p in low))
+
+
 def test_the_fingertips_depth_and_reach_follow_the_coupled_closing():
     """Closing past about 60 deg the tips rise and come nearer the closing plane (what the flower
     grasp's palm follows down)."""

@@ -247,3 +247,18 @@ def test_a_gentle_close_never_breaks_away_and_stalls_with_its_own_lead():
 def test_a_gentle_close_must_stay_under_the_breakaway_torque():
     with pytest.raises(ValueError, match="gentle_close_torque"):
         HandControllerParams(gentle_close_torque=0.6)
+
+
+def test_a_gentle_pinch_closes_f1_and_f2_and_leaves_f3_where_it_is():
+    """The flower's two-finger pinch: F1 and F2 close as in a gentle close, F3 keeps its command."""
+    params = HandControllerParams()
+    drive = FingerDrive()
+    for _ in range(40):
+        drive = _step(drive, action=HandAction.GENTLE_PINCH, params=params)
+    assert np.all(drive.proximal[:2] > 0.1) and drive.proximal[2] == 0.0 and drive.distal[2] == 0.0
+    np.testing.assert_allclose(drive.distal[:2], drive.proximal[:2] * hand.DISTAL_PER_PROXIMAL)
+    gentle = FingerDrive()
+    for _ in range(40):
+        gentle = _step(gentle, action=HandAction.GENTLE_CLOSE, params=params)
+    np.testing.assert_array_equal(drive.proximal[:2], gentle.proximal[:2])
+    assert not drive.broken_away.any()

@@ -23,7 +23,9 @@ closes through the close, the lift and the hold, so that a finger re-squeezes wh
 A plan without breakaway (the flower grasp) closes gently (HandAction.GENTLE_CLOSE: each finger stops
 at its first contact, its clutch engaged) and then holds its fingers where they stopped through the lift
 and the hold (HandAction.HOLD): the BH8's worm drives are not back-driven, so a light squeeze on a
-thin edge keeps its shape when the lift loads it.
+thin edge keeps its shape when the lift loads it. A plan whose thumb does not close (the flower grasp's
+two-finger pinch, `GraspPlan.thumb_closes`) closes F1 and F2 so and leaves F3 at its preshape
+(HandAction.GENTLE_PINCH).
 """
 
 import dataclasses
@@ -283,7 +285,8 @@ class GraspExecutor(LeafSystem):
         elif motion.plan.breakaway:
             action = HandAction.CLOSE
         else:
-            action = HandAction.GENTLE_CLOSE if phase == GraspPhase.CLOSE else HandAction.HOLD
+            gentle = HandAction.GENTLE_CLOSE if motion.plan.thumb_closes else HandAction.GENTLE_PINCH
+            action = gentle if phase == GraspPhase.CLOSE else HandAction.HOLD
         output.SetFromVector([motion.plan.spread, float(action)])
 
     def _CalcPreshape(self, context: Context, output: BasicVector) -> None:

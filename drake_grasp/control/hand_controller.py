@@ -8,7 +8,9 @@ object or its 48 deg limit. If the distal link is stopped first, the motor stall
 stops. A stopped finger keeps squeezing with its stall torque. Reopening re-engages the clutch.
 A gentle close (HandAction.GENTLE_CLOSE) keeps the motor's torque under the clutch's breakaway torque:
 each finger stops, coupled, at its first contact and squeezes lightly there (the flower grasp's close,
-whose fingertips meet a thin object's edge at the table and must not curl over it).
+whose fingertips meet a thin object's edge at the table and must not curl over it). A gentle pinch
+(HandAction.GENTLE_PINCH) closes F1 and F2 so while F3 stays where its preshape put it (the flower
+grasp's two-finger pinch of a small object, F1 and F2 opposed at a 90 deg spread).
 Spread (F1 and F2, one motor) goes to the compliance mode's angle before the fingers close.
 
 How it is simulated (docs/design.md §5.3): every finger joint has an implicit PD actuator in the plant
@@ -233,12 +235,13 @@ def advance_drive(
     proximal, distal = list(proximal_before), list(distal_before)
     broken = [b > 0.5 for b in x[_BROKEN:_BROKEN + F]]
     angle = list(x[_ANGLE:_ANGLE + F])
-    if action in (HandAction.CLOSE, HandAction.GENTLE_CLOSE) and spread_ready:
+    if action in (HandAction.CLOSE, HandAction.GENTLE_CLOSE, HandAction.GENTLE_PINCH) and spread_ready:
         # A gentle close keeps the motor's torque under the clutch's: smaller leads, and no breakaway.
-        gentle = action == HandAction.GENTLE_CLOSE
+        # A gentle pinch closes F1 and F2 so and leaves F3's commands where they are.
+        gentle = action != HandAction.CLOSE
         lead_p = params.gentle_proximal_lead if gentle else proximal_lead
         lead_d = params.gentle_distal_lead if gentle else distal_lead
-        for f in range(F):
+        for f in range(F - 1 if action == HandAction.GENTLE_PINCH else F):
             if not gentle and not broken[f] and proximal_torque[f] > params.breakaway_torque:
                 # The clutch slips: the proximal joint holds where it is; the distal keeps closing.
                 broken[f] = True

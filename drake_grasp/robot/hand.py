@@ -126,6 +126,7 @@ class HandAction(enum.IntEnum):
     HOLD = 2  # keep the fingers where they are (and keep squeezing if they squeeze).
     PRESHAPE = 3  # move each finger (coupled, clutch engaged) to a given proximal angle and stop.
     GENTLE_CLOSE = 4  # close with the motor's torque held under the clutch's breakaway: no breakaway.
+    GENTLE_PINCH = 5  # F1 and F2 close as GENTLE_CLOSE; F3 keeps its place (the flower's two-finger pinch).
 
 
 @dataclasses.dataclass(frozen=True)
@@ -273,16 +274,29 @@ def fingertip_depth(proximal: float, spread: float = 0.0) -> float:
     return _deepest(round(float(proximal), 3), spread)
 
 
+def closing_direction(finger: int, spread: float = 0.0) -> tuple[float, float]:
+    """The unit direction (x, y in the hand base frame) in which a finger's knuckle link points, from
+    its spread axis outward; the finger closes back along it, toward the palm's centre line. At spread
+    0, F1 and F2 point along -y and F3 along +y; at 90 deg, F1 and F2 point along -x and +x, opposed on
+    one line through the palm centre (the D-H table's spread row, `finger_dh_table`)."""
+    theta = finger_dh_table(finger, spread)[0][3]
+    return math.cos(theta), math.sin(theta)
+
+
 @functools.lru_cache(maxsize=512)
-def fingertip_reach(proximal: float, spread: float = 0.0, band: float = 0.010) -> float:
-    """How near the palm's closing plane the fingertips' lowest `band` m comes at this coupled proximal
-    angle, m: the smallest distance, across the closing direction (the palm's y), of any distal-link
-    point within `band` of the deepest one. An object narrower than twice this, centred, is not under
-    the fingertips when they land."""
+def fingertip_reach(proximal: float, spread: float = 0.0, band: float = 0.010, fingers: tuple = FINGERS) -> float:
+    """How near the palm's centre line the fingertips' lowest `band` m comes at this coupled proximal
+    angle, m: the smallest distance, along each finger's closing direction (`closing_direction`; the
+    palm's y at spread 0), of any of its distal-link points within `band` of the deepest one, over
+    `fingers`. An object narrower than twice this along that direction, centred, is not under the
+    fingertips when they land."""
     import numpy as np
 
     reach = np.inf
-    for p in closing_distal_points(proximal, spread):
+    for finger, p in zip(FINGERS, closing_distal_points(proximal, spread)):
+        if finger not in fingers:
+            continue
         low = p[p[:, 2] > p[:, 2].max() - band]
-        reach = min(reach, float(np.min(np.abs(low[:, 1]))))
+        u = np.array(closing_direction(finger, spread))
+        reach = min(reach, float(np.min(np.abs(low[:, :2] @ u))))
     return reach
