@@ -35,7 +35,7 @@ from pathlib import Path
 import numpy as np
 import trimesh
 
-from drake_grasp.objects.novel import CIRCULAR_SEGMENTS, _manifold, _to_trimesh, obj_text
+from drake_grasp.objects.generated import CIRCULAR_SEGMENTS, manifold, obj_text, to_trimesh
 
 CLASSES = ("polycube", "scan", "mug", "bottle", "box")
 FORMATS = ("mesh", "urdf")
@@ -51,7 +51,7 @@ _STEP_WEIGHTS = np.array([4.0, 4.0, 4.0, 4.0, 2.0]) / 18.0
 
 
 def _polycube(rng: np.random.Generator) -> trimesh.Trimesh:
-    m = _manifold()
+    m = manifold()
     count = int(rng.integers(2, 9))
     cells = [(0, 0, 0)]
     while len(cells) < count:
@@ -66,7 +66,7 @@ def _polycube(rng: np.random.Generator) -> trimesh.Trimesh:
     size = edge + 2e-4
     solid = m.Manifold.batch_boolean([m.Manifold.cube((size,) * 3, center=True).translate(tuple(edge * np.array(c)))
                                       for c in cells], m.OpType.Add)
-    return _to_trimesh(solid)
+    return to_trimesh(solid)
 
 
 def _scan(rng: np.random.Generator) -> trimesh.Trimesh:
@@ -80,17 +80,17 @@ def _scan(rng: np.random.Generator) -> trimesh.Trimesh:
     size = rng.uniform(0.05, 0.14)
     axes = rng.uniform(0.55, 1.0, size=3) * size / 2.0
     lump = trimesh.Trimesh(directions * np.maximum(radius, 0.4)[:, None] * axes, sphere.faces, process=True)
-    m = _manifold()
+    m = manifold()
     solid = m.Manifold(m.Mesh(vert_properties=np.asarray(lump.vertices, np.float32),
                               tri_verts=np.asarray(lump.faces, np.uint32)))
     cut = lump.bounds[0, 2] + rng.uniform(0.15, 0.3) * lump.extents[2]  # where it stood when scanned
-    mesh = _to_trimesh(solid.trim_by_plane((0.0, 0.0, 1.0), float(cut)))
+    mesh = to_trimesh(solid.trim_by_plane((0.0, 0.0, 1.0), float(cut)))
     noise = rng.normal(scale=min(0.001, 0.01 * size), size=(len(mesh.vertices), 3))  # the scanner's noise
     return trimesh.Trimesh(mesh.vertices + noise, mesh.faces, process=True)
 
 
 def _mug(rng: np.random.Generator) -> trimesh.Trimesh:
-    m = _manifold()
+    m = manifold()
     radius, height, wall = rng.uniform(0.03, 0.05), rng.uniform(0.07, 0.12), rng.uniform(0.003, 0.006)
     outer = m.Manifold.cylinder(height, radius, circular_segments=CIRCULAR_SEGMENTS)
     inner = m.Manifold.cylinder(height, radius - wall, circular_segments=CIRCULAR_SEGMENTS).translate((0, 0, wall))
@@ -98,7 +98,7 @@ def _mug(rng: np.random.Generator) -> trimesh.Trimesh:
     section = m.CrossSection.circle(tube, CIRCULAR_SEGMENTS // 2).translate((loop, 0.0))
     handle = m.Manifold.revolve(section, CIRCULAR_SEGMENTS).rotate((90.0, 0.0, 0.0))
     handle = handle.translate((radius - 0.3 * loop, 0.0, height * rng.uniform(0.45, 0.6)))
-    return _to_trimesh((outer - inner) + handle)
+    return to_trimesh((outer - inner) + handle)
 
 
 def _bottle(rng: np.random.Generator) -> trimesh.Trimesh:

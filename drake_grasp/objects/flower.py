@@ -35,7 +35,7 @@ from pathlib import Path
 import numpy as np
 import trimesh
 
-from drake_grasp.objects.novel import CIRCULAR_SEGMENTS, obj_text
+from drake_grasp.objects.generated import CIRCULAR_SEGMENTS, obj_text, to_trimesh
 
 CLASSES_0_7 = ("plate", "T", "L", "stick", "ball", "fruit")
 CLASSES = ("plate", "tile", "T", "L", "stick", "pen", "domino", "standing_domino", "cube", "ball", "fruit")
@@ -50,11 +50,6 @@ class FlowerObject:
     mesh: trimesh.Trimesh
 
 
-def _from_manifold(solid) -> trimesh.Trimesh:
-    out = solid.to_mesh()
-    return trimesh.Trimesh(np.asarray(out.vert_properties)[:, :3], np.asarray(out.tri_verts), process=True)
-
-
 def _rounded_plate(rng: np.random.Generator) -> trimesh.Trimesh:
     import manifold3d as m
 
@@ -66,7 +61,7 @@ def _rounded_plate(rng: np.random.Generator) -> trimesh.Trimesh:
         return trimesh.creation.box([length, width, thickness])
     core = m.CrossSection.square((length - 2 * fillet, width - 2 * fillet), center=True)
     rounded = core.offset(fillet, m.JoinType.Round, circular_segments=CIRCULAR_SEGMENTS)
-    return _from_manifold(m.Manifold.extrude(rounded, thickness).translate((0.0, 0.0, -thickness / 2)))
+    return to_trimesh(m.Manifold.extrude(rounded, thickness).translate((0.0, 0.0, -thickness / 2)))
 
 
 def _letter(rng: np.random.Generator, letter: str) -> trimesh.Trimesh:
@@ -81,7 +76,7 @@ def _letter(rng: np.random.Generator, letter: str) -> trimesh.Trimesh:
     else:
         second = m.Manifold.cube((width, arm, thickness), center=True).translate(
             ((stem - width) / 2.0, 0.0, 0.0))
-    return _from_manifold(first + second)
+    return to_trimesh(first + second)
 
 
 def _stick(rng: np.random.Generator) -> trimesh.Trimesh:
@@ -123,7 +118,7 @@ def _tile(rng: np.random.Generator) -> trimesh.Trimesh:
     # A bevelled slab: the hull of a full-size core and a face inset by the bevel on each side.
     core = m.Manifold.cube((side, other, thickness - 2 * bevel), center=True)
     face = m.Manifold.cube((side - 2 * bevel, other - 2 * bevel, thickness), center=True)
-    return _from_manifold(m.Manifold.batch_hull([core, face]))
+    return to_trimesh(m.Manifold.batch_hull([core, face]))
 
 
 def _pen(rng: np.random.Generator) -> trimesh.Trimesh:
@@ -135,7 +130,7 @@ def _pen(rng: np.random.Generator) -> trimesh.Trimesh:
     barrel = m.Manifold.cylinder(length - tip, across / 2, circular_segments=sides)
     cone = m.Manifold.cylinder(tip, across / 2, across / 8, circular_segments=sides).translate((0.0, 0.0, length - tip))
     pen = (barrel + cone).rotate((0.0, 90.0, 0.0))  # lying along x
-    return _from_manifold(pen)
+    return to_trimesh(pen)
 
 
 def _domino_block(rng: np.random.Generator) -> tuple[float, float, float]:
@@ -152,7 +147,7 @@ def _cube(rng: np.random.Generator) -> trimesh.Trimesh:
     inner = side - 2 * radius
     corners = [m.Manifold.sphere(radius, CIRCULAR_SEGMENTS // 2).translate((x, y, z))
                for x in (-inner / 2, inner / 2) for y in (-inner / 2, inner / 2) for z in (-inner / 2, inner / 2)]
-    return _from_manifold(m.Manifold.batch_hull(corners))
+    return to_trimesh(m.Manifold.batch_hull(corners))
 
 
 def flower_object(seed: int, index: int, classes: tuple[str, ...] = CLASSES) -> FlowerObject:

@@ -50,7 +50,7 @@ from pathlib import Path
 import numpy as np
 import trimesh
 
-from drake_grasp.objects.novel import obj_text
+from drake_grasp.objects.generated import obj_text
 
 CLASSES = ("ellipsoid", "rounded_box", "tapered_cylinder", "rounded_cylinder")
 PRIMITIVE_OF_CLASS = {"ellipsoid": "sphere", "rounded_box": "box", "tapered_cylinder": "cylinder",

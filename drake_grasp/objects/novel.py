@@ -23,16 +23,16 @@ from __future__ import annotations
 
 import csv
 import dataclasses
-import io
 import json
 from pathlib import Path
 
 import numpy as np
 import trimesh
 
+from drake_grasp.objects.generated import CIRCULAR_SEGMENTS, manifold, obj_text, to_trimesh
+
 CLASSES = ("blob", "union", "plate", "L", "T", "ring", "handle")
 SIZE_RANGE = (0.03, 0.25)  # m: largest extent of a generated object
-CIRCULAR_SEGMENTS = 48  # facets around a cylinder, ellipsoid or torus
 
 
 @dataclasses.dataclass(frozen=True)
@@ -60,19 +60,6 @@ class NovelObject:
         }
 
 
-def _manifold():
-    import manifold3d  # Imported here: only the generator needs it.
-
-    return manifold3d
-
-
-def _to_trimesh(solid) -> trimesh.Trimesh:
-    mesh = solid.to_mesh()
-    vertices = np.asarray(mesh.vert_properties, dtype=float)[:, :3]
-    faces = np.asarray(mesh.tri_verts, dtype=np.int64)
-    return trimesh.Trimesh(vertices, faces, process=True)
-
-
 def _random_rotation_deg(rng: np.random.Generator) -> tuple[float, float, float]:
     return tuple(float(v) for v in rng.uniform(0.0, 360.0, size=3))
 
@@ -80,7 +67,7 @@ def _random_rotation_deg(rng: np.random.Generator) -> tuple[float, float, float]
 def _primitive(rng: np.random.Generator, scale: float):
     """A random box, cylinder or ellipsoid (Manifold) of dimensions 0.25-0.6 × `scale`, randomly
     rotated, centred near the origin."""
-    m = _manifold()
+    m = manifold()
     kind = rng.choice(["box", "cylinder", "ellipsoid"])
     dims = rng.uniform(0.25, 0.6, size=3) * scale
     if kind == "box":
@@ -108,13 +95,13 @@ def _blob(rng: np.random.Generator) -> trimesh.Trimesh:
 
 
 def _union(rng: np.random.Generator) -> trimesh.Trimesh:
-    m = _manifold()
+    m = manifold()
     solids = [_primitive(rng, 1.0) for _ in range(int(rng.integers(2, 5)))]
     solid = m.Manifold.batch_boolean(solids, m.OpType.Add)
     parts = solid.decompose()
     if len(parts) > 1:  # Keep the shapes touching: the largest part (random pieces may miss it).
         solid = max(parts, key=lambda p: p.volume())
-    return _to_trimesh(solid)
+    return to_trimesh(solid)
 
 
 def _bar(m, length: float, width: float, height: float, x: float, y: float):
@@ -122,7 +109,7 @@ def _bar(m, length: float, width: float, height: float, x: float, y: float):
 
 
 def _letter(rng: np.random.Generator, letter: str) -> trimesh.Trimesh:
-    m = _manifold()
+    m = manifold()
     width, height = rng.uniform(0.15, 0.35), rng.uniform(0.12, 0.35)
     stem, arm = 1.0, rng.uniform(0.5, 1.0)
     first = _bar(m, stem, width, height, 0.0, 0.0)
@@ -130,29 +117,29 @@ def _letter(rng: np.random.Generator, letter: str) -> trimesh.Trimesh:
         second = _bar(m, width, arm, height, (stem - width) / 2.0, (arm - width) / 2.0)
     else:
         second = _bar(m, width, arm, height, 0.0, (arm + width) / 2.0 - 1e-3)
-    return _to_trimesh(first + second)
+    return to_trimesh(first + second)
 
 
 def _plate(rng: np.random.Generator) -> trimesh.Trimesh:
-    m = _manifold()
-    return _to_trimesh(m.Manifold.cube((1.0, rng.uniform(0.4, 1.0), 1.0), center=True))
+    m = manifold()
+    return to_trimesh(m.Manifold.cube((1.0, rng.uniform(0.4, 1.0), 1.0), center=True))
 
 
 def _ring(rng: np.random.Generator) -> trimesh.Trimesh:
-    m = _manifold()
+    m = manifold()
     tube = rng.uniform(0.1, 0.22)
     section = m.CrossSection.circle(tube, CIRCULAR_SEGMENTS // 2).translate((0.5 - tube, 0.0))
-    return _to_trimesh(m.Manifold.revolve(section, CIRCULAR_SEGMENTS))
+    return to_trimesh(m.Manifold.revolve(section, CIRCULAR_SEGMENTS))
 
 
 def _handle(rng: np.random.Generator) -> trimesh.Trimesh:
-    m = _manifold()
+    m = manifold()
     radius, height = rng.uniform(0.25, 0.4), 1.0
     body = m.Manifold.cylinder(height, radius, circular_segments=CIRCULAR_SEGMENTS, center=True)
     tube, loop = rng.uniform(0.05, 0.09), rng.uniform(0.2, 0.3)
     section = m.CrossSection.circle(tube, CIRCULAR_SEGMENTS // 2).translate((loop, 0.0))
     torus = m.Manifold.revolve(section, CIRCULAR_SEGMENTS).rotate((90.0, 0.0, 0.0))
-    return _to_trimesh(body + torus.translate((radius, 0.0, 0.0)))
+    return to_trimesh(body + torus.translate((radius, 0.0, 0.0)))
 
 
 def novel_object(seed: int, index: int) -> NovelObject:
@@ -184,17 +171,6 @@ def novel_object(seed: int, index: int) -> NovelObject:
     if mesh.volume < 0:
         mesh.invert()
     return NovelObject(f"{shape_class}_{seed}_{index:03d}", shape_class, seed, index, mesh)
-
-
-def obj_text(mesh: trimesh.Trimesh) -> str:
-    """The mesh as Wavefront OBJ with a fixed number format (µm), so equal meshes give equal bytes."""
-    out = io.StringIO()
-    out.write("# drake-grasp novel object (metres)\n")
-    for x, y, z in mesh.vertices:
-        out.write(f"v {x:.6f} {y:.6f} {z:.6f}\n")
-    for a, b, c in mesh.faces:
-        out.write(f"f {a + 1} {b + 1} {c + 1}\n")
-    return out.getvalue()
 
 
 def generate(count: int, seed: int, out_dir: str | Path) -> list[dict]:
