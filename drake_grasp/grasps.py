@@ -22,7 +22,9 @@ model and no contact planning: the hand's compliance does the rest.
   along the table into the object's foot (Kazemi et al., RSS 2012; Autonomous Robots 2014: the same
   WAM and BarrettHand, a guarded landing of the fingertips and a close under a light force on the
   table; Eppner et al., IJRR 2015: the table as the environmental constraint). What it holds and
-  misses, and what else was tried: docs/design.md §5.4f, docs/results/flower.md.
+  misses, and what else was tried: docs/design.md §5.4f, docs/results/flower.md. On an object too
+  small for F1 and F2 to meet at that spread (a 2-3 cm cube, a domino standing on end), F1 and F2 turn
+  to a 90 degree spread and pinch it from opposite sides while F3 stays open (`flower_pinches`).
 * **box grasp**: cylindrical mode; the hand is aligned with the box's axes: it approaches along the
   box axis closest to the vertical (onto the top face), and its fingers close across the shorter side
   of that face. A face wider than the fingers' knuckles are apart would catch the open proximal links
@@ -72,7 +74,7 @@ FLOWER_PRESHAPE_RANGE = (math.radians(40.0), math.radians(85.0))
 # The flower grasp's two-finger pinch (docs/design.md §5.4f). At the cylindrical spread F1 and F2 sit
 # 25 mm either side of the closing plane (hand.AW) and their 23 mm pads cover 13.5-36.5 mm from it: an
 # object whose footprint is shorter than PINCH_MAX_LENGTH along that line passes between them, and only
-# F3 touches it (2-2.5 cm cubes and standing dominoes were missed or dropped at every seed). At a 90 deg
+# F3 touches it (flower seed 11: 2-3 cm cubes held 7/15, standing dominoes 4-6/15). At a 90 deg
 # spread F1 and F2 face each other on one line through the palm centre; F3 stays open and they pinch
 # the object's sides. The tips' rounded ends meet a side lower than PINCH_MIN_HEIGHT with a contact
 # normal pointing down into it, and ride over it (oracle, seeds 1-2: 2.5 cm squares 12 and 15 mm tall
@@ -203,6 +205,10 @@ class GraspPlan:
     palm_force: float = 0.0
     breakaway: bool = True
     thumb_closes: bool = True
+
+    def __post_init__(self):
+        if not self.thumb_closes and self.breakaway:
+            raise ValueError("grasp plan: only a gentle close (breakaway False) can leave F3 open")
 
     @property
     def compliant_arm(self) -> bool:

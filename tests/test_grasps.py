@@ -256,3 +256,12 @@ def test_a_planners_grasp_has_no_near_symmetric_equivalent():
 
     plan = GraspPlan(None, 0.3, RigidTransform([0.5, 0.0, 0.3]))
     assert near_symmetric_plans(plan) == [(0.0, plan)]
+
+
+def test_only_a_gentle_close_leaves_the_thumb_open():
+    from drake_grasp.grasps import GraspPlan
+
+    with pytest.raises(ValueError, match="gentle close"):
+        GraspPlan(GraspType.PRECISION, grasps.PINCH_SPREAD, RigidTransform(), thumb_closes=False)
+    assert not GraspPlan(GraspType.PRECISION, grasps.PINCH_SPREAD, RigidTransform(), breakaway=False,
+                         thumb_closes=False).thumb_closes
