@@ -263,7 +263,7 @@ def plot(maps: dict[str, FamilyMap], out_dir: pathlib.Path) -> list[pathlib.Path
         bottom.grid(alpha=0.3)
         if c == 0:
             bottom.set_ylabel("share of errors held")
-    fig.colorbar(image, ax=[axes[0][c] for c in range(len(columns))], label="share of seeds held", shrink=0.9)
+    fig.colorbar(image, ax=[ax for row in axes for ax in row], label="share of seeds held", shrink=0.6)
     fig.suptitle("Fig. 4's flower in full dynamics: the flower grasp (fingertips landed on the table, compliant "
                  "arm) over object size and pose error", fontsize=9)
     paths = save_figure(fig, out_dir, "fig4_flower", dpi=110)
