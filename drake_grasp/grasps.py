@@ -24,7 +24,8 @@ model and no contact planning: the hand's compliance does the rest.
   table; Eppner et al., IJRR 2015: the table as the environmental constraint). What it holds and
   misses, and what else was tried: docs/design.md §5.4f, docs/results/flower.md. On an object too
   small for F1 and F2 to meet at that spread (a 2-3 cm cube, a domino standing on end), F1 and F2 turn
-  to a 90 degree spread and pinch it from opposite sides while F3 stays open (`flower_pinches`).
+  to a 90 degree spread and pinch it from opposite sides while F3 stays open; a slender one lying down
+  (a stick) they pinch so end to end (`flower_pinch_axis`).
 * **box grasp**: cylindrical mode; the hand is aligned with the box's axes: it approaches along the
   box axis closest to the vertical (onto the top face), and its fingers close across the shorter side
   of that face. A face wider than the fingers' knuckles are apart would catch the open proximal links
@@ -91,6 +92,17 @@ PINCH_PRESHAPE_RANGE = (math.radians(40.0), math.radians(100.0))
 # whose sides are within this ratio, the pinch runs along the reach (a 2 cm cube pinched across the
 # reach turned 0.5 rad and fell at two of three seeds; along it, held at all three).
 PINCH_SQUARE = 1.25
+# A slender object lying down (a stick, a marker, a chopstick) is pinched end to end instead, along its
+# long side: F1 and F2 meet its end faces, whose edges stand as high as the stick is thick, and the
+# tips reach them at shallow angles (60-77° at the proximal joints). Across it, the three-finger
+# flower meets a round stick's side below its top with the contact normal pointing down into it, and
+# drops round sticks under about 1.6 cm (docs/design.md §5.4f). Measured from the true pose, seeds 1-2:
+# round and square sticks 1-2 cm across and 8-14 cm long held end to end in 25 of 26 trials; shorter
+# ones need taller ends (6-7 cm: a 1.2 cm one dropped, a 1.5 cm one held), as the tips meet the ends
+# more steeply; a 9 mm one was dropped. A conical end (a pen's point) lets a tip ride over it either way.
+PINCH_SLENDER = 4.0  # the footprint's long side at least this many times its short side
+PINCH_LENGTH_RANGE = (0.08, 0.16)  # m: the long side (the longest tried: 14 cm; the tips reach 20 cm)
+PINCH_MIN_END_HEIGHT = 0.010  # m
 # Approaches within this angle of the vertical are "from above" for the table clearance.
 _FROM_ABOVE = math.radians(45.0)
 _DOWN = np.array([0.0, 0.0, -1.0])
@@ -332,26 +344,36 @@ def flower_landing_angle(half_width: float, spread: float, fingers: tuple = hand
     return math.radians(low)
 
 
-def flower_pinches(estimate: ObjectEstimate) -> bool:
-    """Whether the flower grasp pinches with two fingers (`PINCH_SPREAD`): the estimate's footprint is
-    shorter than PINCH_MAX_LENGTH along its long side, and it stands at least PINCH_MIN_HEIGHT above
-    the table."""
+def flower_pinch_axis(estimate: ObjectEstimate) -> int | None:
+    """The estimate's axis along which the flower grasp pinches with two fingers (`PINCH_SPREAD`), or
+    None for the three-finger flower:
+
+    * a small object (its footprint shorter than PINCH_MAX_LENGTH, standing at least PINCH_MIN_HEIGHT
+      above the table) is pinched across the footprint's shorter side, or on a near-square footprint
+      (`PINCH_SQUARE`) along the side nearer the arm's reach (from `ARM_BASE_XY`);
+    * a slender one lying down (`PINCH_SLENDER`, `PINCH_LENGTH_RANGE`, `PINCH_MIN_END_HEIGHT`) end to end,
+      along its long side.
+    """
     R = np.asarray(estimate.R_WB, float)
     size = np.asarray(estimate.size, float)
-    _, long_axis, _ = _top_face_axes(R, size)
+    _, long_axis, short_axis = _top_face_axes(R, size)
     height = float(np.asarray(estimate.center)[2]) + estimate.half_extent_along(-_DOWN) - estimate.table_height
-    return estimate.half_extent_along(R[:, long_axis]) * 2 < PINCH_MAX_LENGTH and height >= PINCH_MIN_HEIGHT
+    length = 2 * estimate.half_extent_along(R[:, long_axis])
+    width = 2 * estimate.half_extent_along(R[:, short_axis])
+    if length < PINCH_MAX_LENGTH and height >= PINCH_MIN_HEIGHT:
+        if length > PINCH_SQUARE * width:
+            return short_axis
+        reach = np.asarray(estimate.center, float)[:2] - ARM_BASE_XY
+        return max((short_axis, long_axis), key=lambda i: abs(float(R[:2, i] @ reach)))
+    low, high = PINCH_LENGTH_RANGE
+    if low <= length <= high and length >= PINCH_SLENDER * width and height >= PINCH_MIN_END_HEIGHT:
+        return long_axis
+    return None
 
 
-def _pinch_axis(estimate: ObjectEstimate, long_axis: int, short_axis: int) -> int:
-    """The estimate's axis the two-finger pinch closes along: the footprint's shorter side, or on a
-    near-square footprint (`PINCH_SQUARE`) the side nearer the arm's reach (from `ARM_BASE_XY`)."""
-    size = np.asarray(estimate.size, float)
-    if size[long_axis] > PINCH_SQUARE * size[short_axis]:
-        return short_axis
-    R = np.asarray(estimate.R_WB, float)
-    reach = np.asarray(estimate.center, float)[:2] - ARM_BASE_XY
-    return max((short_axis, long_axis), key=lambda i: abs(float(R[:2, i] @ reach)))
+def flower_pinches(estimate: ObjectEstimate) -> bool:
+    """Whether the flower grasp pinches with two fingers (`flower_pinch_axis`)."""
+    return flower_pinch_axis(estimate) is not None
 
 
 def precision_grasp(estimate: ObjectEstimate) -> GraspPlan:
@@ -363,13 +385,15 @@ def precision_grasp(estimate: ObjectEstimate) -> GraspPlan:
     point `FLOWER_SINK` below the table, whatever the object's height: the guarded approach ends when
     the tips touch the table (or the object's top, if it is wider than the hand opens).
 
-    On a small object with sides to pinch (`flower_pinches`), F1 and F2 at `PINCH_SPREAD` face each
-    other across the footprint's shorter side and close on it; F3 stays open (its preshape 0).
+    On a small object with sides to pinch, or a slender one lying down (`flower_pinch_axis`), F1 and
+    F2 at `PINCH_SPREAD` face each other across it (the small one) or at its ends (the slender one) and
+    close on it; F3 stays open (its preshape 0).
     """
     R = np.asarray(estimate.R_WB, float)
-    _, long_axis, short_axis = _top_face_axes(R, np.asarray(estimate.size, float))
-    if flower_pinches(estimate):
-        R_WP = _palm_rotation(_DOWN, R[:, _pinch_axis(estimate, long_axis, short_axis)])  # F1, F2 along x_P
+    _, long_axis, _ = _top_face_axes(R, np.asarray(estimate.size, float))
+    pinch_axis = flower_pinch_axis(estimate)
+    if pinch_axis is not None:
+        R_WP = _palm_rotation(_DOWN, R[:, pinch_axis])  # F1 and F2 close along x_P
         spread, thumb_closes = PINCH_SPREAD, False
         angle = flower_landing_angle(estimate.half_extent_along(R_WP.col(0)), spread, (1, 2), PINCH_PRESHAPE_RANGE)
         preshape = (angle, angle, 0.0) + (angle * hand.DISTAL_PER_PROXIMAL,) * 2 + (0.0,)

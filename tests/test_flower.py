@@ -130,3 +130,26 @@ def test_the_flower_grasp_pinches_a_2_cm_cube_that_f1_and_f2_would_straddle():
     assert record.success, (record.failure, record.detail)
     assert record.finger_angles[3] == pytest.approx(0.0, abs=0.02)  # F3's proximal joint stayed open
     assert "bh_finger_1_distal" in record.contacts_at_end and "bh_finger_2_distal" in record.contacts_at_end
+
+
+def test_the_flower_grasp_pinches_a_thin_round_stick_end_to_end():
+    """A 1.2 cm round stick 12 cm long (oracle pose, seed 2): F1 and F2 meet its end faces and it is
+    held; the three-finger flower across it drops round sticks this thin (docs/design.md §5.4f)."""
+    from drake_grasp.grasps import PINCH_SPREAD, oracle_estimate, plan_compliant_grasp
+    from drake_grasp.objects import cylinder_object
+    from drake_grasp.station import load_scenario
+    from drake_grasp.trial.given_plan import run_trial
+
+    plans = []
+
+    def plan(X_WO, spec):
+        plans.append(plan_compliant_grasp("precision", oracle_estimate(X_WO, spec)))
+        return plans[-1]
+
+    record = run_trial(load_scenario(), cylinder_object(0.012, 0.12), plan, seed=2, method="oracle",
+                       grasp="precision")
+    assert plans[0].spread == PINCH_SPREAD and not plans[0].thumb_closes
+    # F1 and F2 close along the palm's x, which lies along the stick's axis (the world's x, give or take
+    # the placement's 10 degrees).
+    assert abs(plans[0].X_WP_target.rotation().col(0)[0]) > 0.98
+    assert record.success, (record.failure, record.detail)

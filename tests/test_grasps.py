@@ -100,7 +100,7 @@ def _lowest_fingertip(plan):
                for f in (1, 2, 3) for p in np.linspace(0, hand.PROXIMAL_LIMITS[1], 141))
 
 
-@pytest.mark.parametrize("height, width", [(0.008, 0.06), (0.02, 0.03), (0.012, 0.012)])
+@pytest.mark.parametrize("height, width", [(0.008, 0.06), (0.02, 0.03), (0.012, 0.03)])
 def test_the_flower_grasp_lands_the_fingertips_on_the_table_clear_of_the_object(height, width):
     """The preshaped fingertips' deepest point is FLOWER_SINK below the table at the landing target,
     their lowest centimetre lands FLOWER_MARGIN beyond the object's half-width, the palm is above the
@@ -130,11 +130,16 @@ def test_the_flower_grasp_lands_the_fingertips_on_the_table_clear_of_the_object(
     ((0.025, 0.025, 0.015), False),  # too low to pinch: the tips ride over its sides
     ((0.036, 0.025, 0.03), False),  # long enough for the three-finger flower
     ((0.08, 0.05, 0.01), False),  # a plate
+    ((0.12, 0.012, 0.012), True),  # a stick lying down: end to end
+    ((0.06, 0.012, 0.012), False),  # too short: its ends are met too steeply
+    ((0.12, 0.009, 0.009), False),  # its ends too low
+    ((0.12, 0.04, 0.012), False),  # not slender: a strip, the three-finger flower
 ])
-def test_the_flower_grasp_pinches_small_objects_with_sides_between_f1_and_f2(size, pinches):
+def test_the_flower_grasp_pinches_small_objects_and_sticks(size, pinches):
     """On a footprint shorter than PINCH_MAX_LENGTH with sides at least PINCH_MIN_HEIGHT tall, F1 and F2
-    at a 90 deg spread face each other across its short side and F3 stays open; else the three-finger
-    flower grasp. The pinching tips land FLOWER_MARGIN clear of the sides, FLOWER_SINK below the table."""
+    at a 90 deg spread face each other across its short side and F3 stays open; on a slender stick lying
+    down, at its ends; else the three-finger flower grasp. The pinching tips land FLOWER_MARGIN clear of
+    the sides (or ends), FLOWER_SINK below the table."""
     yaw = math.radians(-30)
     plan = precision_grasp(_estimate([0.5, 0.0, size[2] / 2], size, yaw=yaw))
     assert grasps.flower_pinches(_estimate([0.5, 0.0, size[2] / 2], size, yaw=yaw)) == pinches
@@ -144,9 +149,9 @@ def test_the_flower_grasp_pinches_small_objects_with_sides_between_f1_and_f2(siz
         return
     assert plan.spread == grasps.PINCH_SPREAD and not plan.thumb_closes
     angle = plan.finger_preshape[0]
-    assert plan.finger_preshape == (angle, angle, 0.0, angle / 3, angle / 3, 0.0)
-    short = min(size[:2])
+    assert plan.finger_preshape == pytest.approx((angle, angle, 0.0, angle / 3, angle / 3, 0.0))
     estimate = _estimate([0.5, 0.0, size[2] / 2], size, yaw=yaw)
+    short = max(size[:2]) if max(size[:2]) >= 0.08 else min(size[:2])  # a stick end to end, else across
     assert estimate.half_extent_along(plan.X_WP_target.rotation().col(0)) == pytest.approx(short / 2)
     assert hand.fingertip_reach(angle, grasps.PINCH_SPREAD, fingers=(1, 2)) >= short / 2 + FLOWER_MARGIN - 1e-9
     assert hand.fingertip_reach(angle + math.radians(1), grasps.PINCH_SPREAD, fingers=(1, 2)) < short / 2 + FLOWER_MARGIN
