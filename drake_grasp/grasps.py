@@ -100,9 +100,15 @@ PINCH_SQUARE = 1.25
 # round and square sticks 1-2 cm across and 8-14 cm long held end to end in 25 of 26 trials; shorter
 # ones need taller ends (6-7 cm: a 1.2 cm one dropped, a 1.5 cm one held), as the tips meet the ends
 # more steeply; a 9 mm one was dropped. A conical end (a pen's point) lets a tip ride over it either way.
+# End to end has almost no funnel across the stick: in Fig. 4's flower (round sticks 12 cm long, the true
+# pose shifted, seeds 1-2) every shift across of 5 mm or more failed, where the three-finger flower across
+# held 20 mm sticks over ±1.5 cm (38/50 points against 10/50 end to end). So only sticks thinner than
+# PINCH_MAX_STICK_WIDTH, which the flower across drops, are pinched end to end (12 mm: 0/50 across,
+# 10/50 end to end; 16 mm: 11/50 both).
 PINCH_SLENDER = 4.0  # the footprint's long side at least this many times its short side
 PINCH_LENGTH_RANGE = (0.08, 0.16)  # m: the long side (the longest tried: 14 cm; the tips reach 20 cm)
 PINCH_MIN_END_HEIGHT = 0.010  # m
+PINCH_MAX_STICK_WIDTH = 0.015  # m
 # Approaches within this angle of the vertical are "from above" for the table clearance.
 _FROM_ABOVE = math.radians(45.0)
 _DOWN = np.array([0.0, 0.0, -1.0])
@@ -351,8 +357,8 @@ def flower_pinch_axis(estimate: ObjectEstimate) -> int | None:
     * a small object (its footprint shorter than PINCH_MAX_LENGTH, standing at least PINCH_MIN_HEIGHT
       above the table) is pinched across the footprint's shorter side, or on a near-square footprint
       (`PINCH_SQUARE`) along the side nearer the arm's reach (from `ARM_BASE_XY`);
-    * a slender one lying down (`PINCH_SLENDER`, `PINCH_LENGTH_RANGE`, `PINCH_MIN_END_HEIGHT`) end to end,
-      along its long side.
+    * a thin, slender one lying down (`PINCH_SLENDER`, `PINCH_LENGTH_RANGE`, `PINCH_MAX_STICK_WIDTH`,
+      `PINCH_MIN_END_HEIGHT`) end to end, along its long side.
     """
     R = np.asarray(estimate.R_WB, float)
     size = np.asarray(estimate.size, float)
@@ -366,7 +372,8 @@ def flower_pinch_axis(estimate: ObjectEstimate) -> int | None:
         reach = np.asarray(estimate.center, float)[:2] - ARM_BASE_XY
         return max((short_axis, long_axis), key=lambda i: abs(float(R[:2, i] @ reach)))
     low, high = PINCH_LENGTH_RANGE
-    if low <= length <= high and length >= PINCH_SLENDER * width and height >= PINCH_MIN_END_HEIGHT:
+    if (low <= length <= high and length >= PINCH_SLENDER * width and width < PINCH_MAX_STICK_WIDTH
+            and height >= PINCH_MIN_END_HEIGHT):
         return long_axis
     return None
 

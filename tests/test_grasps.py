@@ -134,6 +134,7 @@ def test_the_flower_grasp_lands_the_fingertips_on_the_table_clear_of_the_object(
     ((0.06, 0.012, 0.012), False),  # too short: its ends are met too steeply
     ((0.12, 0.009, 0.009), False),  # its ends too low
     ((0.12, 0.04, 0.012), False),  # not slender: a strip, the three-finger flower
+    ((0.12, 0.016, 0.016), False),  # thick enough for the flower across, whose funnel is wider
 ])
 def test_the_flower_grasp_pinches_small_objects_and_sticks(size, pinches):
     """On a footprint shorter than PINCH_MAX_LENGTH with sides at least PINCH_MIN_HEIGHT tall, F1 and F2
