@@ -364,8 +364,7 @@ def flower_pinch_axis(estimate: ObjectEstimate) -> int | None:
     size = np.asarray(estimate.size, float)
     _, long_axis, short_axis = _top_face_axes(R, size)
     height = float(np.asarray(estimate.center)[2]) + estimate.half_extent_along(-_DOWN) - estimate.table_height
-    length = 2 * estimate.half_extent_along(R[:, long_axis])
-    width = 2 * estimate.half_extent_along(R[:, short_axis])
+    length, width = size[long_axis], size[short_axis]
     if length < PINCH_MAX_LENGTH and height >= PINCH_MIN_HEIGHT:
         if length > PINCH_SQUARE * width:
             return short_axis
@@ -376,11 +375,6 @@ def flower_pinch_axis(estimate: ObjectEstimate) -> int | None:
             and height >= PINCH_MIN_END_HEIGHT):
         return long_axis
     return None
-
-
-def flower_pinches(estimate: ObjectEstimate) -> bool:
-    """Whether the flower grasp pinches with two fingers (`flower_pinch_axis`)."""
-    return flower_pinch_axis(estimate) is not None
 
 
 def precision_grasp(estimate: ObjectEstimate) -> GraspPlan:

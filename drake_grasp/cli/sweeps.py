@@ -188,10 +188,8 @@ def objects_arg(args, default: tuple[str, ...]) -> tuple[str, ...]:
 
 
 def _run_fig4(args) -> int:
-    from drake_grasp.studies import fig4
+    from drake_grasp.studies import fig4, fig4_flower
     from drake_grasp.sweeps.lock import results_lock
-
-    from drake_grasp.studies import fig4_flower
     from drake_grasp.sweeps.results import check_results_file
     from drake_grasp.sweeps.runner import TRIAL_FIELDS
 

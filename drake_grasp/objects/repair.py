@@ -331,7 +331,7 @@ def _part_shells(mesh: trimesh.Trimesh, report: RepairReport, opened: list) -> l
     triangles = mesh.vertices[faces]
     doubled_area = np.linalg.norm(np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0]), axis=1)
     degenerate = repeated | (doubled_area <= (1e-9 * scale) ** 2)
-    if _closed_without(mesh, repeated):
+    if np.any(degenerate & ~repeated) and _closed_without(mesh, repeated):
         # A closed surface whose only flaw is a collinear (zero-area) triangle: it is the sliver of a
         # T-junction (a vertex on its neighbour's edge, as a boolean union and a round to micrometres
         # leave), and dropping it would open a slit no hole filler closes. It is kept: it adds no area

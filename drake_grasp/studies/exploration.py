@@ -32,6 +32,7 @@ import pathlib
 import numpy as np
 
 from drake_grasp.sweeps.results import save_figure, write_atomically
+from drake_grasp.sweeps.runner import succeeded
 from drake_grasp.sweeps.stats import error_bars, format_rate, wilson_interval
 
 FULL, MINIMAL = "table_top", "minimal_exploration"
@@ -120,10 +121,6 @@ def chosen(row: dict) -> str:
 
 def cost(row: dict) -> dict:
     return _extra(row).get("exploration") or {}
-
-
-def succeeded(row: dict) -> bool:
-    return str(row["success"]) in ("1", "True")
 
 
 def pairs(objects, full_rows: list[dict], minimal_rows: list[dict]) -> list[Pair]:

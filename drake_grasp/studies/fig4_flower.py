@@ -44,6 +44,7 @@ import sys
 import numpy as np
 
 from drake_grasp.sweeps.results import save_figure
+from drake_grasp.sweeps.runner import succeeded
 
 FAMILIES = ("plate", "stick", "cube")
 AXES = ("x", "y")  # x: along the object's long axis; y: across it
@@ -156,10 +157,6 @@ def run_flower(config: FlowerConfig, out_dir: pathlib.Path, executor=None, worke
 
 # --- Analysis. ------------------------------------------------------------------------------------
 
-def held(row: dict) -> bool:
-    return str(row["success"]) in ("1", "True")
-
-
 @dataclasses.dataclass
 class FamilyMap:
     """A family's outcomes: per axis, the share of seeds held at each (error, size)."""
@@ -168,7 +165,6 @@ class FamilyMap:
     sizes: np.ndarray  # m, ascending
     errors: np.ndarray  # m, ascending
     share: dict  # axis -> array (len(errors), len(sizes)) of the share of seeds held
-    trials: int
 
     def width(self, axis: str, j: int) -> tuple[float, float] | None:
         """The run of errors around 0 along `axis` held at every seed, for size j: (lowest, highest),
@@ -203,10 +199,10 @@ def summarise(results: dict[Point, dict]) -> dict[str, FamilyMap]:
                     continue
                 i, j = int(np.searchsorted(errors, p.error)), int(np.searchsorted(sizes, p.size))
                 count[i, j] += 1
-                held_count[i, j] += held(r)
+                held_count[i, j] += succeeded(r)
             with np.errstate(invalid="ignore"):
                 share[axis] = np.where(count > 0, held_count / np.maximum(count, 1), np.nan)
-        out[family] = FamilyMap(family, sizes, errors, share, len(mine))
+        out[family] = FamilyMap(family, sizes, errors, share)
     return out
 
 
@@ -224,7 +220,7 @@ def summary_lines(maps: dict[str, FamilyMap], results: dict[Point, dict]) -> lis
             for axis in AXES:
                 w = m.width(axis, j)
                 widths.append(f"{axis} {w[0] * 100:+g} to {w[1] * 100:+g} cm" if w else f"{axis} none")
-            parts.append(f"{size * 1000:g} mm: {short_rate(sum(held(r) for r in rows), len(rows))} held, "
+            parts.append(f"{size * 1000:g} mm: {short_rate(sum(succeeded(r) for r in rows), len(rows))} held, "
                          f"funnel {', '.join(widths)}")
         lines.append(f"flower, {family}s ({SIZE_NAMES[family]}; full dynamics, the flower grasp): " + "; ".join(parts))
     return lines

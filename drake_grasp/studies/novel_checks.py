@@ -20,13 +20,10 @@ import json
 import numpy as np
 
 from drake_grasp.primitives.decision import decision_margin
+from drake_grasp.sweeps.runner import succeeded
 from drake_grasp.sweeps.stats import format_rate
 
 LOW_MARGIN = 0.2  # a decision margin below this is a close call (a choice)
-
-
-def _ok(row: dict) -> bool:
-    return str(row["success"]) in ("1", "True")
 
 
 def oracle_specs(chosen: dict, trials: int, seed: int, scenario_file: str = "", scenario_name: str = "default"):
@@ -43,7 +40,7 @@ def truth_lines(rows, oracle_rows: list[dict]) -> list[str]:
     estimate (`rows`: the study's NovelRows), and the difference in points."""
     truth = collections.defaultdict(lambda: [0, 0])
     for r in oracle_rows:
-        truth[(r["object"], r["grasp"])][0] += _ok(r)
+        truth[(r["object"], r["grasp"])][0] += succeeded(r)
         truth[(r["object"], r["grasp"])][1] += 1
 
     def totals(mine):

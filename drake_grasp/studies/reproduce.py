@@ -275,7 +275,8 @@ def _run(out_dir, quick, workers, seed, energy, executor):
     figures = list(fig4.plot(summaries4, out_dir / "fig4"))
     flower_config = fig4_flower.FlowerConfig.quick() if quick else fig4_flower.FlowerConfig.full()
     flower_results = fig4_flower.run_flower(flower_config, out_dir / "fig4", executor=executor)
-    figures += fig4_flower.plot(fig4_flower.summarise(flower_results), out_dir / "fig4")
+    flower_maps = fig4_flower.summarise(flower_results)
+    figures += fig4_flower.plot(flower_maps, out_dir / "fig4")
     trials = 2 if quick else 10
     config6 = fig6.Fig6Config(objects=fig6.QUICK_OBJECTS if quick else PAPER_OBJECTS, trials=trials, seed=seed)
     stats6, f6, _, _ = fig6.run_sweep(config6, out_dir / "fig6", executor=executor)
@@ -299,7 +300,7 @@ def _run(out_dir, quick, workers, seed, energy, executor):
     write_report(report, claims, wall, quick, energy, figures, {k: f"{v} rows" for k, v in resumed.items() if v},
                  executor.describe(), novel_lines=novel_lines,
                  flower_lines=([fig4.flower_line(summaries4[fig4.FLOWER])] if fig4.FLOWER in summaries4 else [])
-                 + fig4_flower.summary_lines(fig4_flower.summarise(flower_results), flower_results))
+                 + fig4_flower.summary_lines(flower_maps, flower_results))
     replays = ensure_replays(out_dir / "replays", replay_specs(config6, config7, out_dir / "fig7", executor),
                              executor)
     write_report_html(out_dir / "report.html", report.read_text(), replays)

@@ -25,7 +25,7 @@ from drake_grasp.sweeps.results import ResultsTable, json_finite
 from drake_grasp.trial.spec import TrialSpec  # re-exported: `runner.TrialSpec` keeps working
 
 __all__ = ["TRIAL_FIELDS", "TRIAL_KEY", "TRIAL_TYPES", "TrialSpec", "fingerprints", "group_specs", "run_group",
-           "run_one", "run_trials", "select", "spec_key", "trial_table"]
+           "run_one", "run_trials", "select", "spec_key", "succeeded", "trial_table"]
 
 TRIAL_FIELDS = [
     "fingerprint", "object", "method", "grasp", "seed", "success", "failure", "lift", "slip_distance", "slip_angle",
@@ -38,6 +38,11 @@ TRIAL_TYPES = {
     "slip_angle": "float", "approach_stopped_on_contact": "bool", "finger_angles": "json", "breakaway": "json",
     "breakaway_angles": "json", "variation": "json", "sim_time": "float", "wall_time": "float", "extra": "json",
 }
+
+
+def succeeded(row: dict) -> bool:
+    """Whether a trial row held, as written (True) or as read back from the CSV ("1" or "True")."""
+    return str(row["success"]) in ("1", "True")
 
 
 def trial_table(csv_path: pathlib.Path, read_only: bool = False) -> ResultsTable:
