@@ -54,6 +54,7 @@ from pydrake.math import RigidTransform, RotationMatrix
 
 from drake_grasp.robot import hand
 from drake_grasp.robot.hand import ComplianceMode
+from drake_grasp.flower_facing import thumb_to_the_right
 
 # Height of the finger knuckles' axes behind the palm surface, m (hand.PALM_HEIGHT - hand.DW).
 _KNUCKLE_BEHIND_PALM = hand.PALM_HEIGHT - hand.DW
@@ -382,7 +383,8 @@ def precision_grasp(estimate: ObjectEstimate) -> GraspPlan:
     of the compliant arm (module docstring).
 
     The palm faces down above the object's centre, its fingers closing across the shorter horizontal
-    side. The fingers are preshaped to `flower_landing_angle`, and the palm's target puts their deepest
+    side, F3 to the right of the arm's reach (`flower_facing.thumb_to_the_right`; where the camera saw
+    the footprint, `funnel.planning` may turn it so that F1 and F2 meet its fuller side). The fingers are preshaped to `flower_landing_angle`, and the palm's target puts their deepest
     point `FLOWER_SINK` below the table, whatever the object's height: the guarded approach ends when
     the tips touch the table (or the object's top, if it is wider than the hand opens).
 
@@ -399,7 +401,9 @@ def precision_grasp(estimate: ObjectEstimate) -> GraspPlan:
         angle = flower_landing_angle(estimate.half_extent_along(R_WP.col(0)), spread, (1, 2), PINCH_PRESHAPE_RANGE)
         preshape = (angle, angle, 0.0) + (angle * hand.DISTAL_PER_PROXIMAL,) * 2 + (0.0,)
     else:
-        R_WP = _palm_rotation(_DOWN, R[:, long_axis])  # fingers close along the short side
+        # Fingers close along the short side, F3 to the right of the arm's reach (`flower_facing`).
+        R_WP = thumb_to_the_right(_palm_rotation(_DOWN, R[:, long_axis]),
+                                  np.asarray(estimate.center, float)[:2] - ARM_BASE_XY)
         spread, thumb_closes = ComplianceMode.CYLINDRICAL.spread, True
         angle = flower_landing_angle(estimate.half_extent_along(R_WP.col(1)), spread)
         preshape = (angle,) * 3 + (angle * hand.DISTAL_PER_PROXIMAL,) * 3

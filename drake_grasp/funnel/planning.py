@@ -11,6 +11,9 @@ and the grasp executed comes with its candidates in the search's order (the prim
 its funnel is open, else the widest funnel's centre, then the rest), which the executor tries in
 that order until the arm reaches one (`GraspExecutor.plan_reachable_motion`).
 
+The flower grasp, which the search does not score (a thin object gives every grasp ε = 0), faces the
+footprint the camera saw: F1 and F2 on its fuller side (`facing_the_footprint`, `flower_facing`).
+
 One search per decision: the branches of one exploration (Fig. 6 executes every grasp from a copy of
 the state at the decision) share it through a small cache keyed by what the search reads.
 """
@@ -22,12 +25,14 @@ import dataclasses
 import hashlib
 
 import numpy as np
+from pydrake.math import RigidTransform
 
+from drake_grasp.flower_facing import faces_fuller_side
 from drake_grasp.funnel.observed_shape import observed_shape
 from drake_grasp.funnel.params import FunnelParams
 from drake_grasp.funnel.search import FunnelSearch, search
-from drake_grasp.grasps import (GRASP_OF_SHAPE, NEAR_SYMMETRIES, GraspPlan, GraspType, near_symmetric_alternatives,
-                                plan_compliant_grasp, turned_about_approach)
+from drake_grasp.grasps import (ARM_BASE_XY, GRASP_OF_SHAPE, NEAR_SYMMETRIES, GraspPlan, GraspType,
+                                near_symmetric_alternatives, plan_compliant_grasp, turned_about_approach)
 from drake_grasp.primitives.decision import FLAT, UPRIGHT, choose_shape, choose_with_funnels
 from drake_grasp.primitives.scores import SHAPES
 from drake_grasp.primitives.table_top import HeightMap
@@ -84,14 +89,14 @@ def choose_grasp(estimate, grasp_estimate, forced: str | None = None, params: Fu
         found = _search(grasp_estimate, params, height_map, _uncertainty_centre(estimate))
     if found is None:
         executed = forced or paper_choice
-        plan = retry_plan(plan_compliant_grasp(executed, grasp_estimate), exclude)
+        plan = retry_plan(facing_the_footprint(plan_compliant_grasp(executed, grasp_estimate), height_map), exclude)
         return GraspChoice(paper_choice, paper_choice, executed, plan, near_symmetric_alternatives(plan))
     empty = {shape: found.funnels[GraspType(GRASP_OF_SHAPE[shape])].empty for shape in SHAPES}
     chosen = GRASP_OF_SHAPE[choose_with_funnels(resemblances, empty, excluded)]
     executed = forced or chosen
     funnel = found.funnels.get(GraspType(executed))
     if funnel is None:  # a forced precision grasp: the search does not cover it
-        plan = plan_compliant_grasp(executed, grasp_estimate)
+        plan = retry_plan(facing_the_footprint(plan_compliant_grasp(executed, grasp_estimate), height_map), exclude)
         return GraspChoice(chosen, paper_choice, executed, plan, near_symmetric_alternatives(plan), found)
     ordered = funnel.ordered()
     first, rest = ordered[0], ordered[1:]
@@ -119,6 +124,20 @@ def retry_plan(plan: GraspPlan, failed: tuple) -> GraspPlan:
     times = failed.count(plan.grasp.value) if plan.grasp is not None else 0
     turns = NEAR_SYMMETRIES.get(plan.grasp, ())
     return turned_about_approach(plan, turns[0] * times) if times and turns else plan
+
+
+def facing_the_footprint(plan: GraspPlan, height_map: HeightMap | None) -> GraspPlan:
+    """A three-finger flower grasp turned, if need be, so that F1 and F2 meet the fuller side of the
+    footprint the camera saw (`flower_facing.faces_fuller_side`); every other plan, and every plan
+    without a height map, as it is."""
+    if plan.grasp is not GraspType.PRECISION or not plan.thumb_closes or height_map is None:
+        return plan
+    footprint_xy, _ = height_map.columns()
+    if len(footprint_xy) == 0:
+        return plan
+    X = plan.X_WP_target
+    R_WP = faces_fuller_side(X.rotation(), X.translation(), footprint_xy, X.translation()[:2] - ARM_BASE_XY)
+    return dataclasses.replace(plan, X_WP_target=RigidTransform(R_WP, X.translation()))
 
 
 def _uncertainty_centre(estimate) -> float | None:
