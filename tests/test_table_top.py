@@ -1,5 +1,6 @@
 """The table-top estimate's pure functions: back-projection, the height map, the column solid."""
 
+import dataclasses
 import math
 
 import numpy as np
@@ -99,6 +100,35 @@ def test_a_tilted_rod_gives_a_tilted_axis():
     estimate = table_top.estimate(_map_of(points))
     tilt = math.degrees(math.asin(abs(estimate.principal_axis[2])))
     assert 2.0 < tilt < 10.0
+
+
+@pytest.mark.parametrize("yaw_deg", [0.0, 9.0, 20.0, 45.0])
+def test_the_extents_are_the_points_not_the_cells_they_fell_in(yaw_deg):
+    # A domino 5.07 x 2.28 cm seen at 0.5 mm: along an edge slanted to the 3 mm grid, the cells' centres
+    # stand up to half a cell's diagonal outside it (about +2 mm per span at 9-20 degrees); the
+    # points' outline does not, so the spans come within the points' own spacing.
+    yaw = math.radians(yaw_deg)
+    top = _rotated_box_top((0.5, 0.003), 0.0507, 0.0228, 0.011, yaw)
+    points = _surface_points(top, np.arange(0.46, 0.54, 0.0005), np.arange(-0.04, 0.04, 0.0005))
+    height_map = _map_of(points)
+    estimate = table_top.estimate(height_map)
+    np.testing.assert_allclose(estimate.extents_sides[:2], [0.0507, 0.0228], atol=0.0008)
+    np.testing.assert_allclose(estimate.extents_axis[:2], [0.0507, 0.0228], atol=0.0008)
+    cells_only = table_top.estimate(dataclasses.replace(height_map, support=None))  # the cells' centres
+    if yaw_deg in (9.0, 20.0):
+        assert np.all(cells_only.extents_sides[:2] - np.array([0.0507, 0.0228]) > 0.0012)
+
+
+def test_halves_merge_their_outlines():
+    top = _rotated_box_top((0.5, 0.0), 0.10, 0.04, 0.03, math.radians(15))
+    points = _surface_points(top, np.arange(0.43, 0.57, 0.0005), np.arange(-0.05, 0.05, 0.0005))
+    left, right = points[points[:, 0] < 0.5], points[points[:, 0] >= 0.5]
+    first, second = _map_of(left), _map_of(right)
+    both = first.merged(second)
+    whole = _map_of(points)
+    np.testing.assert_allclose(table_top.estimate(both).extents_sides, table_top.estimate(whole).extents_sides,
+                               atol=1e-9)
+    assert table_top.HeightMap(np.zeros(2), 0.003, np.full((4, 4), np.nan)).outline() is None
 
 
 def test_gaps_between_views_are_closed_and_the_map_knows_when_it_overflows():

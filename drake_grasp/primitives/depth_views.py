@@ -83,7 +83,8 @@ class DepthViews(LeafSystem):
             closes the hand on its column solid: `funnel.observed_shape`).
     """
 
-    # The state's head: [origin set (1/0), origin x, origin y, views, clipped]; the two maps follow.
+    # The state's head: [origin set (1/0), origin x, origin y, views, clipped]; the two maps' heights
+    # follow, then their support points (`table_top.HeightMap.support`).
     _HEAD = 5
 
     def __init__(self, camera: SilhouetteCamera, params: table_top.TableTopParams, table_height: float = 0.0):
@@ -99,7 +100,8 @@ class DepthViews(LeafSystem):
         self._image_port = self.DeclareAbstractInputPort(mask_port.get_name(), mask_port.Allocate())
         self._pose_port = self.DeclareAbstractInputPort("X_WC", AbstractValue.Make(RigidTransform()))
         self._active_port = self.DeclareVectorInputPort("active", 1)
-        initial = np.concatenate([np.zeros(self._HEAD), np.full(2 * n * n, np.nan)])
+        initial = np.concatenate([np.zeros(self._HEAD), np.full(2 * n * n, np.nan),
+                                  np.full(2 * table_top.SUPPORT_DIRECTIONS * 2, np.nan)])
         self._state = self.DeclareDiscreteState(initial)
         self.DeclareVectorOutputPort("table_top", TableTopVector.SIZE, self._CalcTableTop,
                                      {self.discrete_state_ticket(self._state)})
@@ -119,7 +121,14 @@ class DepthViews(LeafSystem):
         clipped = bool(state[4] > 0.5)
         return tuple(table_top.HeightMap(origin.copy(), self.params.cell,
                                          np.array(state[self._HEAD + k * n * n:self._HEAD + (k + 1) * n * n]).reshape(n, n),
-                                         self.table_height, clipped) for k in (0, 1))
+                                         self.table_height, clipped, np.array(state[self._support_slice(k)]).reshape(-1, 2))
+                     for k in (0, 1))
+
+    def _support_slice(self, half: int) -> slice:
+        """Where half map `half`'s support points lie in the state (after both maps' heights)."""
+        n, k = self.params.cells, 2 * table_top.SUPPORT_DIRECTIONS
+        start = self._HEAD + 2 * n * n + half * k
+        return slice(start, start + k)
 
     def _View(self, context: Context, discrete_state) -> None:
         if self._active_port.HasValue(context) and self._active_port.Eval(context)[0] < 0.5:
@@ -145,6 +154,7 @@ class DepthViews(LeafSystem):
         height_map = self.maps(state)[half]
         height_map.add(above)
         state[self._HEAD + half * n * n:self._HEAD + (half + 1) * n * n] = height_map.heights.reshape(-1)
+        state[self._support_slice(half)] = height_map.support.reshape(-1)
         state[3] += 1.0
         state[4] = float(height_map.clipped or state[4] > 0.5)
         discrete_state.get_mutable_vector(self._state).SetFromVector(state)

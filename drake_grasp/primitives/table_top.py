@@ -29,7 +29,9 @@ hangs over the table (the lower half of a ball, the space under a handle). From 
   gives a tilted axis);
 * horizontal sides: the smallest-area rectangle around the footprint (`min_area_rectangle`), for the
   axes of an object that is not elongated, or of an upright one, whose sides its axis does not name;
-* extents: the solid's spans along the estimate's axes.
+* extents: the solid's spans along the estimate's axes, trimmed to the points' own outline (the
+  cells' centres stand up to half a cell's diagonal outside a slanted edge: `HeightMap.support`); the
+  footprint's rectangle is fitted to that outline too.
 
 **Uncertainty.** The depth views are dealt, alternately, to two half maps; each half gives its own
 estimate, and half their difference (with the grid's quantisation, a cell / √12) is the estimate's
@@ -46,6 +48,40 @@ import numpy as np
 from drake_grasp.primitives.camera_model import CameraIntrinsics
 
 _UP = np.array([0.0, 0.0, 1.0])
+
+# The footprint's outline is kept as the points' own extremes along this many horizontal directions
+# (every 2 degrees): their hull lies within 0.02 % of the points' hull, where the cells' centres stand
+# up to half a cell's diagonal beyond it (`HeightMap.support`).
+SUPPORT_DIRECTIONS = 180
+_DIRECTIONS = np.column_stack([np.cos(np.arange(SUPPORT_DIRECTIONS) * 2.0 * math.pi / SUPPORT_DIRECTIONS),
+                               np.sin(np.arange(SUPPORT_DIRECTIONS) * 2.0 * math.pi / SUPPORT_DIRECTIONS)])
+
+
+def empty_support() -> np.ndarray:
+    """A support with no point yet (SUPPORT_DIRECTIONS × 2, NaN)."""
+    return np.full((SUPPORT_DIRECTIONS, 2), np.nan)
+
+
+def raised_support(support: np.ndarray, points_xy: np.ndarray) -> np.ndarray:
+    """`support` with each direction's extreme point replaced by one of `points_xy` (N × 2, m) that
+    reaches further along it."""
+    from scipy.spatial import ConvexHull, QhullError
+
+    support = np.array(support, float, copy=True)
+    points = np.asarray(points_xy, float).reshape(-1, 2)
+    if len(points) == 0:
+        return support
+    try:
+        points = points[ConvexHull(points).vertices]  # only a hull vertex can be extreme
+    except (QhullError, ValueError):
+        pass
+    reach = points @ _DIRECTIONS.T
+    best = np.argmax(reach, axis=0)
+    best_reach = reach[best, np.arange(SUPPORT_DIRECTIONS)]
+    current = np.nan_to_num(np.einsum("kj,kj->k", support, _DIRECTIONS), nan=-np.inf)
+    raise_ = best_reach > current
+    support[raise_] = points[best[raise_]]
+    return support
 
 
 @dataclasses.dataclass
@@ -110,6 +146,11 @@ class HeightMap:
         heights: (n, n) height above the table of the highest point seen in each cell, NaN if none.
         table_height: the table top's z.
         clipped: points fell outside the grid (the object is larger than the map, or moved off it).
+        support: the points' own extreme (x, y) along each of SUPPORT_DIRECTIONS horizontal directions
+            (NaN where none yet), or None (a map made of heights alone: its cells' centres stand for
+            the outline). A cell is raised by any point in it, so along an edge slanted to the grid the
+            extreme cells' centres stand up to half a cell's diagonal outside the object (a 2.3 cm
+            domino yawed 9 degrees read 2.63 cm); the support points do not.
     """
 
     origin: np.ndarray
@@ -117,12 +158,13 @@ class HeightMap:
     heights: np.ndarray
     table_height: float = 0.0
     clipped: bool = False
+    support: np.ndarray | None = None
 
     @classmethod
     def around(cls, centre_xy, cell: float, cells: int, table_height: float = 0.0) -> "HeightMap":
         """An empty map of cells × cells centred on `centre_xy` (its corner on the cell lattice)."""
         corner = np.floor(np.asarray(centre_xy, float)[:2] / cell - cells / 2.0) * cell
-        return cls(corner, cell, np.full((cells, cells), np.nan), table_height)
+        return cls(corner, cell, np.full((cells, cells), np.nan), table_height, support=empty_support())
 
     def add(self, points_W: np.ndarray) -> None:
         """Raises each cell to the highest of its points (points below the table top are ignored)."""
@@ -139,11 +181,26 @@ class HeightMap:
         current = self.heights.reshape(-1)
         raised = top > np.where(np.isnan(current), -np.inf, current)
         current[raised] = top[raised]
+        if self.support is not None:
+            self.support = raised_support(self.support, points[keep, :2])
 
     def merged(self, other: "HeightMap") -> "HeightMap":
         """The map of both maps' points (same grid)."""
         heights = np.fmax(self.heights, other.heights)
-        return HeightMap(self.origin.copy(), self.cell, heights, self.table_height, self.clipped or other.clipped)
+        support = None
+        if self.support is not None and other.support is not None:
+            both = np.vstack([self.support, other.support])
+            support = raised_support(empty_support(), both[np.all(np.isfinite(both), axis=1)])
+        return HeightMap(self.origin.copy(), self.cell, heights, self.table_height, self.clipped or other.clipped,
+                         support)
+
+    def outline(self) -> np.ndarray | None:
+        """The support's distinct points (K × 2, m), or None where it has fewer than 3 (or none)."""
+        if self.support is None:
+            return None
+        points = self.support[np.all(np.isfinite(self.support), axis=1)]
+        points = np.unique(points, axis=0) if len(points) else points
+        return points if len(points) >= 3 else None
 
     def filled_heights(self) -> np.ndarray:
         """The heights (n × n, 0 where empty) after closing the map's small gaps: a cell no point fell in,
@@ -237,18 +294,42 @@ def estimate(height_map: HeightMap, min_cells: int = 3) -> TableTopEstimate | No
     _, vectors = np.linalg.eigh(cov)
     axis = vectors[:, 2]
     axis = axis * np.sign(axis[np.argmax(np.abs(axis))])
-    angle, _ = min_area_rectangle(xy)
+    outline = height_map.outline()
+    angle, _ = min_area_rectangle(xy if outline is None else outline)
     sides = np.array([math.cos(angle), math.sin(angle), 0.0])
     ends = _column_ends(xy, h, height_map.table_height)
     across = np.cross(_UP, axis)
     across = across / np.linalg.norm(across) if np.linalg.norm(across) > 1e-9 else np.cross(_UP, sides)
+    axis_frame = (axis, across, np.cross(axis, across))
+    side_frame = (sides, np.cross(_UP, sides), _UP)
     z_low, z_high = sorted((z_mean, top / 2.0))  # the solid's centroid, half the height (above the table)
     centre = np.array([centroid_xy[0], centroid_xy[1], height_map.table_height + 0.5 * (z_low + z_high)])
     return TableTopEstimate(
         centre=centre, principal_axis=axis, sides=sides,
-        extents_axis=_spans(ends, (axis, across, np.cross(axis, across))),
-        extents_sides=_spans(ends, (sides, np.cross(_UP, sides), _UP)), height=top, cells=len(h),
+        extents_axis=_outline_spans(ends, axis_frame, xy, outline),
+        extents_sides=_outline_spans(ends, side_frame, xy, outline), height=top, cells=len(h),
         centre_bracket=0.5 * (z_high - z_low))
+
+
+def _outline_spans(ends: np.ndarray, directions, xy: np.ndarray, outline: np.ndarray | None) -> np.ndarray:
+    """The column ends' spans along `directions`, each less what the cells' footprint stands beyond the
+    points' outline along its horizontal part, both ways (`HeightMap.support`; more where the cells'
+    centres fall short of it; none without an outline). For a horizontal direction this is the
+    outline's own span; for a tilted one, right to first order in its horizontal part."""
+    spans = _spans(ends, directions)
+    if outline is None:
+        return spans
+    trimmed = []
+    for span, d in zip(spans, directions):
+        horizontal = np.asarray(d, float)[:2]
+        length = float(np.linalg.norm(horizontal))
+        if length < 1e-9:
+            trimmed.append(span)
+            continue
+        u = horizontal / length
+        beyond = sum(float(np.max(xy @ v)) - float(np.max(outline @ v)) for v in (u, -u))
+        trimmed.append(max(span - length * beyond, 0.0))
+    return np.array(trimmed)
 
 
 def _column_ends(xy: np.ndarray, h: np.ndarray, table_height: float) -> np.ndarray:
