@@ -22,6 +22,12 @@ trial seeds 0-2, each object with the palm as planned and turned half a turn):
   rule the side was a coin toss: the camera-driven flower grasp held lying dominoes 3/15 where the true
   pose, whose axes the object file fixes, held 8/15.
 
+The two-finger pinch (F1 and F2 opposed at a 90 degree spread, F3 open) follows the second rule too.
+Its F3 stays at its preshape, on one side of the pinch line, and the measurement says that side
+matters as well (flower seed 19, true pose, as planned and turned: sticks pinched end to end 4/6 with
+F3 to the right and 0/6 to the left; 2-3 cm cubes 15/15 and 14/15; standing dominoes 15/15 both. A
+2.2 cm cube of seed 23, camera-driven: 3/3 and 0/3).
+
 Pure functions of rotations and points (world frame, m); the palm frame P is the hand base's axes
 (`robot.hand`: z along the palm normal, F3 on +y, F1 and F2 at x = -AW and +AW).
 """

@@ -390,13 +390,16 @@ def precision_grasp(estimate: ObjectEstimate) -> GraspPlan:
 
     On a small object with sides to pinch, or a slender one lying down (`flower_pinch_axis`), F1 and
     F2 at `PINCH_SPREAD` face each other across it (the small one) or at its ends (the slender one) and
-    close on it; F3 stays open (its preshape 0).
+    close on it; F3 stays open (its preshape 0), to the right of the arm's reach as in the three-finger
+    flower.
     """
     R = np.asarray(estimate.R_WB, float)
     _, long_axis, _ = _top_face_axes(R, np.asarray(estimate.size, float))
     pinch_axis = flower_pinch_axis(estimate)
     if pinch_axis is not None:
-        R_WP = _palm_rotation(_DOWN, R[:, pinch_axis])  # F1 and F2 close along x_P
+        # F1 and F2 close along x_P; F3, open, to the right of the arm's reach (`flower_facing`).
+        R_WP = thumb_to_the_right(_palm_rotation(_DOWN, R[:, pinch_axis]),
+                                  np.asarray(estimate.center, float)[:2] - ARM_BASE_XY)
         spread, thumb_closes = PINCH_SPREAD, False
         angle = flower_landing_angle(estimate.half_extent_along(R_WP.col(0)), spread, (1, 2), PINCH_PRESHAPE_RANGE)
         preshape = (angle, angle, 0.0) + (angle * hand.DISTAL_PER_PROXIMAL,) * 2 + (0.0,)

@@ -53,6 +53,16 @@ def test_flower_check_refuses_an_unknown_class_in_one_line(capsys):
     assert "--classes: choose from plate, T, L, stick, ball, fruit" in capsys.readouterr().err
 
 
+def test_the_trial_command_takes_the_flower_grasp_by_its_name():
+    from drake_grasp.cli import _parser
+
+    args = _parser().parse_args(["trial", "--object", "box:0.05x0.025x0.01", "--grasp", "flower", "--oracle"])
+    assert args.grasp == "precision"  # the records' name
+    with pytest.raises(SystemExit) as exit_info:
+        _parser().parse_args(["trial", "--object", "box:0.05x0.025x0.01", "--grasp", "petal"])
+    assert exit_info.value.code == 2
+
+
 def test_the_flower_grasp_holds_a_12_mm_plate_the_old_precision_grasp_missed():
     """The flower grasp in full dynamics (oracle pose, seed 1): the compliant arm lands the preshaped
     fingertips on the table, presses while the hand closes, and the plate is lifted and held. The

@@ -86,6 +86,19 @@ def test_the_flower_grasp_puts_f3_to_the_right_whatever_sign_the_estimate_s_axis
     assert _thumb(plan.X_WP_target.rotation()) @ np.array([0.0, -1.0]) > 0.95
 
 
+@pytest.mark.parametrize("axis_sign", [1.0, -1.0])
+@pytest.mark.parametrize("size", [(0.022, 0.022, 0.022), (0.12, 0.012, 0.012)])
+def test_the_pinch_leaves_the_open_f3_to_the_right_too(axis_sign, size):
+    # A 2.2 cm cube (pinched along the reach) and a 1.2 cm stick (pinched end to end).
+    yaw = math.radians(-9.0)
+    a = axis_sign * np.array([math.cos(yaw), math.sin(yaw), 0.0])
+    R_WB = np.column_stack([a, np.cross([0.0, 0.0, 1.0], a), [0.0, 0.0, 1.0]])
+    estimate = ObjectEstimate(center=np.array([0.55, 0.0, size[2] / 2]), R_WB=R_WB, size=np.array(size), table_z=0.0)
+    plan = precision_grasp(estimate)
+    assert not plan.thumb_closes
+    assert _thumb(plan.X_WP_target.rotation()) @ np.array([0.0, -1.0]) > 0.95
+
+
 def _height_map(footprint_xy, centre=(0.55, 0.0), height=0.02):
     hmap = HeightMap.around(np.array(centre), 0.003, 64)
     points = np.column_stack([footprint_xy + np.array(centre), np.full(len(footprint_xy), height)])

@@ -14,6 +14,10 @@ from drake_grasp.cli.common import (UsageError, add_common, add_mesh_options, ch
                                     single_run_inputs)
 from drake_grasp.robot.hand import ComplianceMode
 
+# The compliant grasps' names users may give --grasp besides the records' own: the flower grasp is the
+# grasp type "precision" (the position-held grasp it replaced kept the name, and every record has it).
+GRASP_ALIASES = {"flower": "precision"}
+
 
 def add_demo(sub) -> None:
     """`drake-grasp demo`."""
@@ -51,9 +55,11 @@ def add_trial(sub) -> None:
     trial.add_argument("--method", choices=["compliant", "eigengrasp"], default="compliant",
                        help="compliant (default): explore with the wrist camera, pick the grasp of the most "
                        "resembling shape, execute it, all in one simulation; eigengrasp: see below")
-    trial.add_argument("--grasp", choices=["spherical", "cylindrical", "box", "precision"],
-                       help="force this compliant grasp instead of the algorithm's choice (precision: "
-                       "fingertips closing along the table, for thin, flat and small objects)")
+    trial.add_argument("--grasp", choices=["spherical", "cylindrical", "box", "flower", "precision"],
+                       type=lambda name: GRASP_ALIASES.get(name, name),
+                       help="force this compliant grasp instead of the algorithm's choice (flower: fingertips "
+                       "landed on the table around a thin, flat or small object, the arm compliant; records "
+                       "name it 'precision', the grasp it replaced)")
     trial.add_argument("--oracle", action="store_true",
                        help="skip the camera: compute the grasp (--grasp) from the object's true pose and size")
     trial.add_argument("--attempts", type=int, default=1, metavar="N",
