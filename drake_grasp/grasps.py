@@ -52,9 +52,9 @@ import math
 import numpy as np
 from pydrake.math import RigidTransform, RotationMatrix
 
+from drake_grasp.flower_facing import thumb_to_the_right
 from drake_grasp.robot import hand
 from drake_grasp.robot.hand import ComplianceMode
-from drake_grasp.flower_facing import thumb_to_the_right
 
 # Height of the finger knuckles' axes behind the palm surface, m (hand.PALM_HEIGHT - hand.DW).
 _KNUCKLE_BEHIND_PALM = hand.PALM_HEIGHT - hand.DW
@@ -384,9 +384,10 @@ def precision_grasp(estimate: ObjectEstimate) -> GraspPlan:
 
     The palm faces down above the object's centre, its fingers closing across the shorter horizontal
     side, F3 to the right of the arm's reach (`flower_facing.thumb_to_the_right`; where the camera saw
-    the footprint, `funnel.planning` may turn it so that F1 and F2 meet its fuller side). The fingers are preshaped to `flower_landing_angle`, and the palm's target puts their deepest
-    point `FLOWER_SINK` below the table, whatever the object's height: the guarded approach ends when
-    the tips touch the table (or the object's top, if it is wider than the hand opens).
+    the footprint, `funnel.planning` may turn it so that F1 and F2 meet its fuller side). The fingers
+    are preshaped to `flower_landing_angle`, and the palm's target puts their deepest point
+    `FLOWER_SINK` below the table, whatever the object's height: the guarded approach ends when the
+    tips touch the table (or the object's top, if it is wider than the hand opens).
 
     On a small object with sides to pinch, or a slender one lying down (`flower_pinch_axis`), F1 and
     F2 at `PINCH_SPREAD` face each other across it (the small one) or at its ends (the slender one) and
@@ -397,19 +398,18 @@ def precision_grasp(estimate: ObjectEstimate) -> GraspPlan:
     _, long_axis, _ = _top_face_axes(R, np.asarray(estimate.size, float))
     pinch_axis = flower_pinch_axis(estimate)
     if pinch_axis is not None:
-        # F1 and F2 close along x_P; F3, open, to the right of the arm's reach (`flower_facing`).
-        R_WP = thumb_to_the_right(_palm_rotation(_DOWN, R[:, pinch_axis]),
-                                  np.asarray(estimate.center, float)[:2] - ARM_BASE_XY)
+        R_WP = _palm_rotation(_DOWN, R[:, pinch_axis])  # F1 and F2 close along x_P
         spread, thumb_closes = PINCH_SPREAD, False
         angle = flower_landing_angle(estimate.half_extent_along(R_WP.col(0)), spread, (1, 2), PINCH_PRESHAPE_RANGE)
         preshape = (angle, angle, 0.0) + (angle * hand.DISTAL_PER_PROXIMAL,) * 2 + (0.0,)
     else:
-        # Fingers close along the short side, F3 to the right of the arm's reach (`flower_facing`).
-        R_WP = thumb_to_the_right(_palm_rotation(_DOWN, R[:, long_axis]),
-                                  np.asarray(estimate.center, float)[:2] - ARM_BASE_XY)
+        R_WP = _palm_rotation(_DOWN, R[:, long_axis])  # fingers close along the short side
         spread, thumb_closes = ComplianceMode.CYLINDRICAL.spread, True
         angle = flower_landing_angle(estimate.half_extent_along(R_WP.col(1)), spread)
         preshape = (angle,) * 3 + (angle * hand.DISTAL_PER_PROXIMAL,) * 3
+    # F3 (closing or open) to the right of the arm's reach: a half-turn changes neither the preshape nor
+    # the target (`flower_facing`).
+    R_WP = thumb_to_the_right(R_WP, np.asarray(estimate.center, float)[:2] - ARM_BASE_XY)
     palm_z = estimate.table_height + hand.fingertip_depth(angle, spread) - FLOWER_SINK
     target = np.array([estimate.center[0], estimate.center[1], palm_z], float)
     return GraspPlan(GraspType.PRECISION, spread, RigidTransform(R_WP, target), finger_preshape=preshape,

@@ -89,14 +89,14 @@ def choose_grasp(estimate, grasp_estimate, forced: str | None = None, params: Fu
         found = _search(grasp_estimate, params, height_map, _uncertainty_centre(estimate))
     if found is None:
         executed = forced or paper_choice
-        plan = retry_plan(facing_the_footprint(plan_compliant_grasp(executed, grasp_estimate), height_map), exclude)
+        plan = _faced_plan(executed, grasp_estimate, height_map, exclude)
         return GraspChoice(paper_choice, paper_choice, executed, plan, near_symmetric_alternatives(plan))
     empty = {shape: found.funnels[GraspType(GRASP_OF_SHAPE[shape])].empty for shape in SHAPES}
     chosen = GRASP_OF_SHAPE[choose_with_funnels(resemblances, empty, excluded)]
     executed = forced or chosen
     funnel = found.funnels.get(GraspType(executed))
     if funnel is None:  # a forced precision grasp: the search does not cover it
-        plan = retry_plan(facing_the_footprint(plan_compliant_grasp(executed, grasp_estimate), height_map), exclude)
+        plan = _faced_plan(executed, grasp_estimate, height_map, exclude)
         return GraspChoice(chosen, paper_choice, executed, plan, near_symmetric_alternatives(plan), found)
     ordered = funnel.ordered()
     first, rest = ordered[0], ordered[1:]
@@ -124,6 +124,12 @@ def retry_plan(plan: GraspPlan, failed: tuple) -> GraspPlan:
     times = failed.count(plan.grasp.value) if plan.grasp is not None else 0
     turns = NEAR_SYMMETRIES.get(plan.grasp, ())
     return turned_about_approach(plan, turns[0] * times) if times and turns else plan
+
+
+def _faced_plan(grasp: str, grasp_estimate, height_map: HeightMap | None, exclude: tuple) -> GraspPlan:
+    """`grasp` at its primitive's pose, faced to the footprint (`facing_the_footprint`) and turned for
+    the tries it already used (`retry_plan`): a grasp the search does not place."""
+    return retry_plan(facing_the_footprint(plan_compliant_grasp(grasp, grasp_estimate), height_map), exclude)
 
 
 def facing_the_footprint(plan: GraspPlan, height_map: HeightMap | None) -> GraspPlan:
