@@ -8,7 +8,8 @@ from pydrake.math import RigidTransform, RollPitchYaw
 
 from drake_grasp.primitives.decision import choose_shape
 from drake_grasp.station import ObjectPlacement, object_rest_pose
-from drake_grasp.trial.sensing import LIFTED_FRACTION, depth_change, in_hand_depth, sense_hold
+from drake_grasp.primitives.camera_model import CameraIntrinsics
+from drake_grasp.trial.sensing import LIFTED_FRACTION, depth_change, in_hand_depth, in_hand_shift, sense_hold
 from drake_grasp.trial.spec import TrialSpec
 
 
@@ -52,6 +53,42 @@ def test_an_object_that_slid_in_the_hand_over_the_hold_is_not_held():
     # Too few pixels seen both times: no verdict on slip; the other tests decide.
     assert math.isnan(depth_change(start, in_hand_depth(np.full((40, 40), 0.077), ~mask_start)))
     assert sense_hold(risen, top, lift, hold_depths=(start, in_hand_depth(np.full((40, 40), 0.077), ~mask_start))).held
+
+
+def _ball_depth(intrinsics: CameraIntrinsics, centre, radius: float, hidden=None) -> np.ndarray:
+    """The in-hand depth image (`in_hand_depth`) of a ball at `centre` (camera frame, m), ray-cast;
+    `hidden`: pixels a finger covers."""
+    v, u = np.mgrid[0:intrinsics.height, 0:intrinsics.width]
+    rays = np.stack([(u - intrinsics.cx) / intrinsics.fx, (v - intrinsics.cy) / intrinsics.fy, np.ones(u.shape)], -1)
+    rays /= np.linalg.norm(rays, axis=-1, keepdims=True)
+    c = np.asarray(centre, float)
+    along = rays @ c
+    disc = along ** 2 - c @ c + radius ** 2
+    hit = disc > 0
+    depth = np.where(hit, (along - np.sqrt(np.where(hit, disc, 0.0))) * rays[..., 2], np.inf)
+    mask = hit if hidden is None else hit & ~hidden
+    return in_hand_depth(depth, mask)
+
+
+def test_an_object_that_slid_across_the_view_is_not_held():
+    # A 6 cm ball 15 cm in front of the camera slides 15 mm across its view and 3 mm along it: the
+    # pixel-by-pixel depth change sees little of that, the shift of its points sees all of it. A finger
+    # hides a strip of the image, so the two images see different parts of the ball.
+    intrinsics = CameraIntrinsics.from_fov_y(160, 120, 1.0)
+    finger = np.zeros((120, 160), bool)
+    finger[:, 70:80] = True
+    start = _ball_depth(intrinsics, [0.0, 0.0, 0.15], 0.03, finger)
+    slid = _ball_depth(intrinsics, [0.015, 0.0, 0.153], 0.03, finger)
+    still = _ball_depth(intrinsics, [0.0, 0.0, 0.15], 0.03, np.roll(finger, 15, axis=1))
+    assert abs(depth_change(start, slid)) < 0.01  # along the axis alone, it passes for held
+    assert in_hand_shift(start, slid, intrinsics) == pytest.approx(math.hypot(0.015, 0.003), abs=0.002)
+    assert in_hand_shift(start, still, intrinsics) < 0.001  # the finger's shadow moved, the ball did not
+    top, lift = 0.05, 0.10
+    risen = np.column_stack([np.zeros(50), np.zeros(50), np.linspace(0.10, 0.16, 50)])
+    sensed = sense_hold(risen, top, lift, hold_depths=(start, slid), intrinsics=intrinsics)
+    assert not sensed.held and sensed.moved == pytest.approx(0.0153, abs=0.002)
+    assert sense_hold(risen, top, lift, hold_depths=(start, still), intrinsics=intrinsics).held
+    assert sense_hold(risen, top, lift, hold_depths=(start, slid)).held  # without the intrinsics: axis only
 
 
 def test_a_tall_object_left_on_the_table_is_not_held_though_its_sides_stand_high():

@@ -57,7 +57,6 @@ def run_compliant_attempts(scenario: Scenario, spec: ObjectSpec, *, seed: int, a
                            replay_html: str | None = None, monitor_period: float = 0.05,
                            estimate_error: EstimateError | None = None) -> TrialRecord:
     """Up to `attempts` camera-driven trials of the algorithm's own choice (module docstring)."""
-    lift = scenario.protocol.execution.lift_height
     done: list[TrialRecord] = []
     failed_grasps: list[str] = []
     current = scenario
@@ -66,7 +65,7 @@ def run_compliant_attempts(scenario: Scenario, spec: ObjectSpec, *, seed: int, a
                                           replay_html=replay_html if k == attempts - 1 else None,
                                           monitor_period=monitor_period, estimate_error=estimate_error,
                                           exclude=tuple(failed_grasps))
-        record = _compliant_record(trial, lift, scenario.protocol.slip_distance)
+        record = _compliant_record(trial, scenario)
         done.append(record)
         if k == attempts - 1 or not should_try_again(record):
             break

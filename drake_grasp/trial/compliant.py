@@ -12,6 +12,7 @@ from drake_grasp.objects import ObjectSpec
 from drake_grasp.perception.evaluation import compare, ground_truth
 from drake_grasp.perception.wiring import (AddExplorationSequencer, AddVisualPrimitives, start_camera_pose,
                                            start_configuration)
+from drake_grasp.primitives.camera_model import CameraIntrinsics
 from drake_grasp.station import Scenario
 from drake_grasp.trial.assembly import Assembled, Wiring, assemble_and_run_branches
 from drake_grasp.trial.record import TrialRecord
@@ -47,8 +48,7 @@ def run_compliant_trials(scenario: Scenario, spec: ObjectSpec, *, seed: int, gra
     so they are simulated once, and each grasp goes on from a copy of the state at the decision
     (`assembly.assemble_and_run_branches`). The records are those of the trials run one by one
     (wall time aside: each gets its share of the exploration's)."""
-    lift = scenario.protocol.execution.lift_height
-    return [_compliant_record(trial, lift, scenario.protocol.slip_distance) for trial in run_compliant_branches(
+    return [_compliant_record(trial, scenario) for trial in run_compliant_branches(
         scenario, spec, seed=seed, grasps=grasps, replay_html=replay_html, perception_config=perception_config,
         monitor_period=monitor_period, estimate_error=estimate_error)]
 
@@ -88,11 +88,13 @@ def run_compliant_branches(scenario: Scenario, spec: ObjectSpec, *, seed: int, g
                                      replay_html=replay_html, monitor_period=monitor_period)
 
 
-def _compliant_record(trial: Assembled, lift_height: float, slip_distance: float) -> TrialRecord:
+def _compliant_record(trial: Assembled, scenario: Scenario) -> TrialRecord:
     """A camera-driven trial's record, with what the decision saw: the estimate, the resemblances,
     the chosen grasp and the estimate's errors against the truth at the decision; and what the wrist
-    camera told of the hold (`sensing.sense_hold`, against the lift height and the obvious slip, m)."""
+    camera told of the hold (`sensing.sense_hold`, against the scenario's lift height and obvious slip,
+    with its camera's intrinsics)."""
     record, run, spec = trial.record, trial.run, trial.spec
+    lift_height, slip_distance = scenario.protocol.execution.lift_height, scenario.protocol.slip_distance
     decision = run.decision
     if decision is not None:
         estimate = decision.estimate
@@ -112,7 +114,8 @@ def _compliant_record(trial: Assembled, lift_height: float, slip_distance: float
             in_hand = None if run.depth_at_hold is None else (run.depth_at_hold, run.depth_at_end)
             lifted = None if run.depth_at_lift is None else (run.depth_at_lift, run.depth_at_end)
             record.sensed = sense_hold(run.seen_points, top, lift_height, seen.table_height, in_hand,
-                                       slip_distance, lifted).to_dict()
+                                       slip_distance, lifted,
+                                       CameraIntrinsics.from_camera_config(scenario.camera)).to_dict()
         if estimate.found and run.X_WO_decision is not None:
             errors = compare(estimate, ground_truth(spec, run.X_WO_decision))
             record.estimate_errors = {
