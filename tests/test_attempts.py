@@ -9,7 +9,8 @@ from pydrake.math import RigidTransform, RollPitchYaw
 from drake_grasp.primitives.decision import choose_shape
 from drake_grasp.station import ObjectPlacement, object_rest_pose
 from drake_grasp.primitives.camera_model import CameraIntrinsics
-from drake_grasp.trial.sensing import LIFTED_FRACTION, depth_change, in_hand_depth, in_hand_shift, sense_hold
+from drake_grasp.trial.sensing import (LIFTED_FRACTION, depth_change, in_hand_depth, in_hand_shift, sense_hold,
+                                      too_near_share)
 from drake_grasp.trial.spec import TrialSpec
 
 
@@ -22,6 +23,21 @@ def test_the_object_is_held_when_its_top_rose_with_the_hand():
     assert not sensed.held and sensed.expected_top == pytest.approx(top + LIFTED_FRACTION * lift)
     unseen = sense_hold(np.zeros((0, 3)), top, lift)
     assert not unseen.held and unseen.pixels == 0 and math.isnan(unseen.top)
+
+
+def test_an_object_pressed_against_the_palm_is_held_though_no_depth_is_read():
+    # A 20 cm handle held from above fills the wrist camera's view nearer than it ranges: its depth
+    # image reads 0 ("too near") on every pixel the label image gives the object, and no point is seen.
+    mask = np.ones((24, 32), bool)
+    mask[:, :4] = False  # the background at one side
+    too_near = too_near_share(np.zeros((24, 32)), mask)
+    assert too_near == pytest.approx(28 / 32)
+    assert too_near_share(np.full((24, 32), 0.3), mask) == 0.0  # in range: seen, not too near
+    top, lift = 0.20, 0.10
+    sensed = sense_hold(np.zeros((0, 3)), top, lift, 0.0, too_near=too_near)
+    assert sensed.held and sensed.pixels == 0 and sensed.too_near == pytest.approx(too_near)
+    # The object filling a tenth of the view too near (an edge of it against the lens) is not enough.
+    assert not sense_hold(np.zeros((0, 3)), top, lift, 0.0, too_near=0.1).held
 
 
 def test_a_tall_object_held_from_above_is_seen_held_by_its_sides():

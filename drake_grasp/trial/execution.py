@@ -57,8 +57,10 @@ class Executed:
     # At the end (stations with the wrist camera): the object's points the camera sees (`trial.sensing`:
     # what the robot can tell of a hold), and the object's true pose (where a next attempt finds it);
     # and the object's depth images as the lift began, as the hold began and at the end (whether it rose
-    # with the hand, and whether it slid in it).
+    # with the hand, and whether it slid in it); and the share of the image the object fills nearer
+    # than the camera ranges (`sensing.too_near_share`: pressed against the palm).
     seen_points: np.ndarray | None = None
+    too_near: float = 0.0
     depth_at_lift: np.ndarray | None = None
     depth_at_hold: np.ndarray | None = None
     depth_at_end: np.ndarray | None = None
@@ -263,10 +265,12 @@ class _Watch:
         contacts_end, on_table = self.touching()
         run.X_WO_end = self.object_body.EvalPoseInWorld(plant_context)
         if self.station.diagram.HasOutputPort("camera.depth_image"):
-            from drake_grasp.trial.sensing import in_hand_depth, object_depth_image, visible_object_points
+            from drake_grasp.trial.sensing import (in_hand_depth, object_depth_image, too_near_share,
+                                                   visible_object_points)
 
             image = object_depth_image(self.station, self.context)
             run.seen_points = visible_object_points(self.station, self.context, image=image)
+            run.too_near = too_near_share(*image)
             run.depth_at_end = in_hand_depth(*image)
         p_WO_end = run.X_WO_end.translation()
         record.lift = float(p_WO_end[2] - self.X_WO.translation()[2])

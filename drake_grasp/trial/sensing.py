@@ -29,6 +29,13 @@ grasp from the arm's side) the camera moves across its view as well, and a 16.5 
 rose measured -2 to -5 cm and was taken for held (everyday seed 8080). Not yet mended (docs/design.md
 §5.4h says what was tried).
 
+An object pressed against the palm fills the camera's view nearer than the camera ranges (2 cm): a
+20 cm handle held from above filled all of it with the depth reading "too near", and with no point
+seen it was taken for not held, opened on, and grasped again (novel seed 4096). A camera that is too
+near to range still sees the object in its colour (here, its label) image, and an object that did not
+rise with the hand lies 10 cm or more below the camera after the lift. So the object filling at least
+`TOO_NEAR_SHARE` of the image nearer than the range rose with the hand (`too_near_share`).
+
 An object the camera sees none of is not held, though the fingers can hide a small one whole (a
 3.4 cm ring held by the flower grasp): the finger angles and motor torques were tried as the tie-break
 and do not tell (docs/design.md §5.4h), so such an attempt is tried again and the object may be lost.
@@ -68,6 +75,7 @@ TOP_PERCENTILE = 95  # the visible object's top: this percentile of its points' 
 BOTTOM_PERCENTILE = 5  # the visible object's bottom, likewise
 SLIP_DISTANCE = 0.01  # m: the success test's obvious slip (the scenario's protocol.slip_distance)
 MIN_COMMON_PIXELS = 50  # pixels seeing the object both as the hold began and at its end, to compare them
+TOO_NEAR_SHARE = 0.5  # of the image: the object filling this much nearer than the camera ranges is in the hand
 SHIFT_STRIDE = 2  # every second row and column of the in-hand depth images, for the shift's point sets
 SHIFT_KEPT = 0.7  # the fraction of closest point pairs the shift is fitted to (the rest: seen only once)
 SHIFT_ITERATIONS = 30  # at most, from each start (the fit stops when a step is under 0.01 mm)
@@ -91,6 +99,8 @@ class Sensed:
             (`depth_change`: its depth in the camera's view grows by that much), m (NaN likewise).
         moved: how far the object moved in the hand over the hold, in any direction (`in_hand_shift`),
             m (NaN when not measured).
+        too_near: the share of the image the object fills nearer than the camera ranges
+            (`too_near_share`).
     """
 
     held: bool
@@ -102,6 +112,7 @@ class Sensed:
     slid: float = float("nan")
     rose_short: float = float("nan")
     moved: float = float("nan")
+    too_near: float = 0.0
 
     def to_dict(self) -> dict:
         return dataclasses.asdict(self)
@@ -127,6 +138,13 @@ def object_depth_image(station, root_context) -> tuple[np.ndarray, np.ndarray]:
     labels = station.diagram.GetOutputPort("camera.label_image").Eval(station_context).data
     mask = np.isin(np.asarray(labels).reshape(labels.shape[:2]), object_labels(station))
     return np.array(depth, float).reshape(mask.shape), mask
+
+
+def too_near_share(depth: np.ndarray, mask: np.ndarray) -> float:
+    """The share of the image (0-1) whose pixels are the object's (`mask`) with the depth reading
+    "nearer than the camera ranges" (Drake's depth images: 0; `depth` in m)."""
+    depth = np.asarray(depth, float).reshape(mask.shape)
+    return float(np.mean(np.asarray(mask, bool) & (depth == 0.0)))
 
 
 def in_hand_depth(depth: np.ndarray, mask: np.ndarray) -> np.ndarray:
@@ -205,7 +223,7 @@ def sense_hold(points_W: np.ndarray, top_before: float, lift_height: float,
                table_z: float | None = None, hold_depths: tuple[np.ndarray, np.ndarray] | None = None,
                slip_distance: float = SLIP_DISTANCE,
                lift_depths: tuple[np.ndarray, np.ndarray] | None = None,
-               intrinsics: CameraIntrinsics | None = None) -> Sensed:
+               intrinsics: CameraIntrinsics | None = None, too_near: float = 0.0) -> Sensed:
     """Whether the object is held (module docstring): its visible points' top against the top the
     exploration measured before the grasp (m, world z) and the lift height (m); where the table's
     height `table_z` (m) is given, its visible points' bottom against the table; and where
@@ -214,15 +232,17 @@ def sense_hold(points_W: np.ndarray, top_before: float, lift_height: float,
     and where `lift_depths` gives them as the lift began and at the end, whether it was left behind:
     its depth grew by `LIFTED_FRACTION` of the lift height or more. With the camera's `intrinsics`,
     `hold_depths` also give how far it moved in the hand in any direction (`in_hand_shift`), against
-    `slip_distance`."""
+    `slip_distance`. An object filling `too_near` (a share of the image) of at least `TOO_NEAR_SHARE`
+    nearer than the camera ranges rose with the hand, whatever the points seen say."""
     expected = float(top_before) + LIFTED_FRACTION * float(lift_height)
     expected_bottom = float("nan") if table_z is None else float(table_z) + LIFTED_FRACTION * float(lift_height)
-    if len(points_W) == 0:
-        return Sensed(False, 0, float("nan"), expected, float("nan"), expected_bottom)
-    heights = np.asarray(points_W)[:, 2]
-    top = float(np.percentile(heights, TOP_PERCENTILE))
-    bottom = float(np.percentile(heights, BOTTOM_PERCENTILE))
-    held = top >= expected or (table_z is not None and bottom >= expected_bottom)
+    pressed = too_near >= TOO_NEAR_SHARE
+    if len(points_W) == 0 and not pressed:
+        return Sensed(False, 0, float("nan"), expected, float("nan"), expected_bottom, too_near=too_near)
+    heights = np.asarray(points_W, float).reshape(-1, 3)[:, 2]
+    top = float(np.percentile(heights, TOP_PERCENTILE)) if len(heights) else float("nan")
+    bottom = float(np.percentile(heights, BOTTOM_PERCENTILE)) if len(heights) else float("nan")
+    held = pressed or top >= expected or (table_z is not None and bottom >= expected_bottom)
     slid = float("nan")
     if hold_depths is not None:
         slid = depth_change(*hold_depths)
@@ -235,4 +255,5 @@ def sense_hold(points_W: np.ndarray, top_before: float, lift_height: float,
     if lift_depths is not None:
         rose_short = depth_change(*lift_depths)
         held = held and not rose_short >= LIFTED_FRACTION * float(lift_height)
-    return Sensed(bool(held), int(len(points_W)), top, expected, bottom, expected_bottom, slid, rose_short, moved)
+    return Sensed(bool(held), int(len(points_W)), top, expected, bottom, expected_bottom, slid, rose_short, moved,
+                  too_near)
