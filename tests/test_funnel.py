@@ -115,6 +115,9 @@ def test_the_search_scores_every_grasp_on_the_observed_box_and_finds_its_funnel(
     kept = search(shape, estimate, [GraspType.BOX], FunnelParams(), uncertainty_centre=0.003).funnels[GraspType.BOX]
     assert kept.best.variant == Variant() and kept.primitive == box.primitive
     assert len(kept.candidates) == len(box.candidates)
+    # Its plain half-turn comes next, before any moved pose: the alternative the paper's algorithm
+    # executes when the arm cannot reach the primitive's pose.
+    assert kept.candidates[1].variant == Variant(turn=math.pi)
     summary = found.summary()
     assert summary["grasps_closed"] == found.grasps and set(summary["funnels"]) == {"box", "spherical"}
 

@@ -26,8 +26,9 @@ table, or until the plan's target, and closes with breakaway (`quasistatic.Quasi
 Ties keep what the paper's algorithm would do: the primitive's own pose wins any tie (and any pose
 less than `min_gain` better than it), then the variants in the order above, then the smaller shift.
 With `keep_open_primitive` (the default) the primitive's pose is kept whenever its own funnel is open
-(ε_mean > 0), and the search moves the pose only when it is not; the other candidates follow it in
-the order of their funnels (the alternatives when the arm cannot reach it). A grasp whose every pose has ε = 0 (an empty
+(ε_mean > 0), and the search moves the pose only when it is not. Its plain near-symmetric turns follow
+it (the alternatives the paper's algorithm executes when the arm cannot reach it: behaviour 0.18.0),
+then the other candidates in the order of their funnels. A grasp whose every pose has ε = 0 (an empty
 funnel) keeps its primitive pose. The decision rule that uses the funnels is `primitives.decision`'s.
 """
 
@@ -233,8 +234,16 @@ def search_grasp(scorer: FunnelScorer, grasp: GraspType, estimate: ObjectEstimat
         return value if value > primitive * (1.0 + params.min_gain) else min(value, primitive)
 
     scored.sort(key=lambda s: (-rank(s[0]), s[1], s[2], s[3]))
-    if params.keep_open_primitive and primitive > 0.0:  # an open funnel at the primitive's pose: keep it
-        scored.sort(key=lambda s: s[1] != 0 or s[2] != 0)
+    if params.keep_open_primitive and primitive > 0.0:  # an open funnel at the primitive's pose: keep it,
+        # then its plain near-symmetric turns (what the paper's algorithm executes when the arm cannot
+        # reach the primitive's pose), then the poses the search moved, widest first (a stable sort)
+        def kept_first(s) -> int:
+            _, k, shift, _, variant = s
+            if shift == 0 and variant == Variant(turn=variant.turn):
+                return 0 if k == 0 else 1
+            return 2
+
+        scored.sort(key=kept_first)
     candidates = tuple(
         Candidate(variant.shifted(ci * spacing, cj * spacing), value,
                   variant.shifted(ci * spacing, cj * spacing).apply(base))
