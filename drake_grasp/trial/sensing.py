@@ -166,12 +166,9 @@ def depth_change(start: np.ndarray, end: np.ndarray, min_pixels: int = MIN_COMMO
 def in_hand_points(depth: np.ndarray, intrinsics: CameraIntrinsics, stride: int = SHIFT_STRIDE) -> np.ndarray:
     """The object's points (N × 3, m) in the camera's frame, from its in-hand depth image
     (`in_hand_depth`: NaN off the object): the frame rides on the palm, so these are points of the
-    object in the hand's frame."""
-    z = np.asarray(depth, float)[::stride, ::stride]
-    v, u = np.nonzero(np.isfinite(z))
-    z = z[v, u]
-    u, v = u * stride, v * stride
-    return np.column_stack([(u - intrinsics.cx) / intrinsics.fx * z, (v - intrinsics.cy) / intrinsics.fy * z, z])
+    object in the hand's frame (`table_top.back_project` with the camera at the origin)."""
+    depth = np.asarray(depth, float)
+    return table_top.back_project(depth, np.isfinite(depth), intrinsics, np.eye(3), np.zeros(3), stride)
 
 
 def fit_shift(start: np.ndarray, end: np.ndarray, kept: float = SHIFT_KEPT,
