@@ -1,17 +1,20 @@
 """How often the plain command holds what users bring: per class, at the first attempt and within N.
 
-Generated objects of a generator seed: the novel classes (`--objects novel`, `drake-grasp objects
-generate`: blobs, unions, plates, L and T shapes, rings and handles) or everyday ones (`--objects
-everyday`, `objects.everyday`: polycubes, scans, mugs, bottles and boxes, every second one a URDF with
-a placeholder inertia), each through the compliance-centric algorithm's own choice (camera
-only) with `--attempts N`, under each scenario named (the "before" and "after" columns: e.g. the
+Generated objects of a generator seed, or your own object files (`--files LIST.tsv`). The generators:
+the novel classes (`--objects novel`, `drake-grasp objects generate`: blobs, unions, plates, L and T
+shapes, rings and handles) or everyday ones (`--objects everyday`, `objects.everyday`: polycubes,
+scans, mugs, bottles and boxes, every second one a URDF with a placeholder inertia). Each object goes
+through the compliance-centric algorithm's own choice (camera only) with `--attempts N`, under each scenario named (the "before" and "after" columns: e.g. the
 table-top estimate alone, and the funnel search), over trial seeds. The first attempt's outcome is the
 paper's protocol; within N counts a hold at any attempt (`trial.attempts`). Resumable (the sweeps'
 runner: rerun the same command to go on).
 
-Run: .venv/bin/python scripts/holding_study.py [--objects everyday] --count 14 --seed 9001 --seeds 1,2 --attempts 3
-     --scenarios table_top,funnel --workers 2 --out out/holding [--report docs/results/holding.md]
-     [--classes blob,union,ring,handle]
+A files list has one object a line: its class, its path (relative to the list) and optionally its
+--scale, tab-separated; lines starting with # are skipped.
+
+Run: .venv/bin/python scripts/holding_study.py [--objects everyday | --files LIST.tsv] --count 14 --seed 9001
+     --seeds 1,2 --attempts 3 --scenarios table_top,funnel --workers 2 --out out/holding
+     [--report docs/results/holding.md] [--classes blob,union,ring,handle]
 """
 
 import argparse
@@ -31,6 +34,8 @@ from drake_grasp.sweeps.stats import short_rate
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--objects", choices=("novel", "everyday"), default="novel", help="which generator")
+    parser.add_argument("--files", help="a list of object files (class, path, optional scale; tab-separated) "
+                        "instead of a generator's objects")
     parser.add_argument("--count", type=int, default=14, help="generated objects (the classes in turn)")
     parser.add_argument("--seed", type=int, default=9001, help="the generator's seed")
     parser.add_argument("--seeds", default="1,2", help="trial seeds, comma-separated")
@@ -44,7 +49,7 @@ def main() -> int:
     out = pathlib.Path(args.out)
     seeds = [int(s) for s in args.seeds.split(",")]
     scenarios = args.scenarios.split(",")
-    if args.classes:  # checked before any work starts
+    if args.classes and not args.files:  # checked before any work starts
         from drake_grasp.objects import everyday, novel
 
         known = (novel if args.objects == "novel" else everyday).CLASSES
@@ -53,7 +58,13 @@ def main() -> int:
             print(f"holding_study: error: --classes: choose from {', '.join(known)}", file=sys.stderr)
             return 2
     start = time.perf_counter()
-    if args.objects == "novel":
+    if args.files:
+        try:
+            objects = read_files_list(pathlib.Path(args.files))
+        except (OSError, ValueError) as error:
+            print(f"holding_study: error: --files: {error}", file=sys.stderr)
+            return 2
+    elif args.objects == "novel":
         objects = ensure_objects(out / "objects", args.count, args.seed)
     else:
         from drake_grasp.objects import everyday
@@ -62,17 +73,19 @@ def main() -> int:
         objects = ensure_generated(out / "objects", lambda staging: everyday.generate(args.count, args.seed, staging),
                                    args.count, (args.seed,))
     if args.classes:
+        keep = {c.strip() for c in args.classes.split(",") if c.strip()}
         objects = [o for o in objects if o["class"] in keep]
     from drake_grasp.objects import ObjectError
     from drake_grasp.objects.names import resolve_user_object
 
     for o in objects:  # every object loads before any trial starts: one line and exit 2 if not
         try:
-            resolve_user_object(str(o["file"]))
+            resolve_user_object(str(o["file"]), scale=o.get("scale", 1.0))
         except ObjectError as error:
             print(f"holding_study: error: {error}", file=sys.stderr)
             return 2
-    specs = [TrialSpec(str(o["file"]), "compliant", "", s, scenario_name=n, attempts=args.attempts)
+    specs = [TrialSpec(str(o["file"]), "compliant", "", s, scenario_name=n, attempts=args.attempts,
+                       scale=o.get("scale", 1.0))
              for n in scenarios for o in objects for s in seeds]
     rows = run_trials(specs, out / "trials.csv", executor=LocalExecutor(args.workers), label="holding")
     wall = time.perf_counter() - start
@@ -98,11 +111,15 @@ def main() -> int:
         chose[spec.scenario_name][(attempts[0]["grasp"] if attempts else r["grasp"] or extra.get("chosen")) or "-"] += 1
         tries[spec.scenario_name].append(len(attempts) or 1)
     classes = sorted({c for _, c in counts} - {"all"}) + ["all"]
-    lines = [f"# Holding what users bring: generated {args.objects} objects, first attempt and within {args.attempts}",
-             "", f"`scripts/holding_study.py --objects {args.objects} --count {args.count} --seed {args.seed} --seeds {args.seeds} "
+    source = (f"--files {args.files}" if args.files else f"--objects {args.objects} --count {args.count} --seed {args.seed}")
+    what = (f"{len(objects)} object files of {args.files}" if args.files
+            else f"{len(objects)} objects of generator seed {args.seed}")
+    lines = [f"# Holding what users bring: {'object files' if args.files else 'generated ' + args.objects + ' objects'}, "
+             f"first attempt and within {args.attempts}",
+             "", f"`scripts/holding_study.py {source} --seeds {args.seeds} "
              f"--attempts {args.attempts} --scenarios {args.scenarios}"
-             + (f" --classes {args.classes}" if args.classes else "") + f"`: {len(objects)} objects of generator seed "
-             f"{args.seed}, trial seeds {args.seeds}, the algorithm's own choice (camera only), "
+             + (f" --classes {args.classes}" if args.classes else "") + f"`: {what}, trial seeds {args.seeds}, "
+             "the algorithm's own choice (camera only), "
              f"{len(rows)} trials in {wall / 60:.0f} min on {args.workers} workers.", "",
              "| class | " + " | ".join(f"{n}: first attempt | {n}: within {args.attempts}" for n in scenarios) + " |",
              "|---|" + "---|---|" * len(scenarios)]
@@ -121,6 +138,35 @@ def main() -> int:
     if args.report:
         write_atomically(pathlib.Path(args.report), text)
     return 0
+
+
+def read_files_list(path: pathlib.Path) -> list[dict]:
+    """Objects of a files list: [{"class", "file", "scale"}], paths resolved against the list's folder.
+
+    ValueError naming the line when a line has no class and path, a scale that is not a positive number,
+    or a file that does not exist."""
+    objects = []
+    for number, line in enumerate(path.read_text().splitlines(), 1):
+        if not line.strip() or line.lstrip().startswith("#"):
+            continue
+        fields = [f.strip() for f in line.split("\t")]
+        if len(fields) < 2 or not fields[0] or not fields[1]:
+            raise ValueError(f"{path}:{number}: expected a class and a path, tab-separated")
+        file = (path.parent / fields[1]).resolve()
+        if not file.is_file():
+            raise ValueError(f"{path}:{number}: no such file {fields[1]}")
+        scale = 1.0
+        if len(fields) > 2 and fields[2]:
+            try:
+                scale = float(fields[2])
+            except ValueError:
+                scale = -1.0
+            if not scale > 0.0:
+                raise ValueError(f"{path}:{number}: the scale must be a positive number, got {fields[2]!r}")
+        objects.append({"class": fields[0], "file": file, "scale": scale})
+    if not objects:
+        raise ValueError(f"{path}: no object listed")
+    return objects
 
 
 if __name__ == "__main__":

@@ -34,3 +34,24 @@ def test_an_object_that_does_not_load_is_refused_before_any_trial(tmp_path):
     assert done.stderr.strip().count("\n") == 0
     assert "blob_0_000.obj" in done.stderr and "sheet" in done.stderr
     assert not (out / "trials.csv").exists()
+
+
+def test_a_files_list_with_a_missing_file_or_a_bad_scale_is_refused(tmp_path):
+    (tmp_path / "box.obj").write_text(SHEET)
+    for line, said in (("mug\tno_such.stl\n", "no such file"), ("box\tbox.obj\tmm\n", "scale"),
+                       ("box.obj\n", "class and a path")):
+        listed = tmp_path / "objects.tsv"
+        listed.write_text("# class, path, scale\n" + line)
+        done = _study(tmp_path / "out", "--files", str(listed))
+        assert done.returncode == 2, done.stderr
+        assert done.stderr.strip().count("\n") == 0 and said in done.stderr and "objects.tsv:2" in done.stderr
+        assert not (tmp_path / "out" / "trials.csv").exists()
+
+
+def test_a_files_list_is_loaded_before_any_trial(tmp_path):
+    (tmp_path / "sheet.obj").write_text(SHEET)
+    (tmp_path / "objects.tsv").write_text("scan\tsheet.obj\n")
+    done = _study(tmp_path / "out", "--files", str(tmp_path / "objects.tsv"))
+    assert done.returncode == 2
+    assert done.stderr.strip().count("\n") == 0 and "sheet.obj" in done.stderr
+    assert not (tmp_path / "out" / "trials.csv").exists()
