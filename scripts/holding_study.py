@@ -3,7 +3,8 @@
 Generated objects of a generator seed, or your own object files (`--files LIST.tsv`). The generators:
 the novel classes (`--objects novel`, `drake-grasp objects generate`: blobs, unions, plates, L and T
 shapes, rings and handles) or everyday ones (`--objects everyday`, `objects.everyday`: polycubes,
-scans, mugs, bottles and boxes, every second one a URDF with a placeholder inertia). Each object goes
+scans, mugs, bottles and boxes, every second one a URDF with a placeholder inertia) or low round ones
+(`--objects round`, `objects.round`: fruit and balls 4-11 cm). Each object goes
 through the compliance-centric algorithm's own choice (camera only) with `--attempts N`, under each scenario named (the "before" and "after" columns: e.g. the
 table-top estimate alone, and the funnel search), over trial seeds. The first attempt's outcome is the
 paper's protocol; within N counts a hold at any attempt (`trial.attempts`). Resumable (the sweeps'
@@ -33,7 +34,7 @@ from drake_grasp.sweeps.stats import short_rate
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--objects", choices=("novel", "everyday"), default="novel", help="which generator")
+    parser.add_argument("--objects", choices=("novel", "everyday", "round"), default="novel", help="which generator")
     parser.add_argument("--files", help="a list of object files (class, path, optional scale; tab-separated) "
                         "instead of a generator's objects")
     parser.add_argument("--count", type=int, default=14, help="generated objects (the classes in turn)")
@@ -50,9 +51,9 @@ def main() -> int:
     seeds = [int(s) for s in args.seeds.split(",")]
     scenarios = args.scenarios.split(",")
     if args.classes and not args.files:  # checked before any work starts
-        from drake_grasp.objects import everyday, novel
+        from drake_grasp.objects import everyday, novel, round as round_objects
 
-        known = (novel if args.objects == "novel" else everyday).CLASSES
+        known = {"novel": novel, "everyday": everyday, "round": round_objects}[args.objects].CLASSES
         keep = {c.strip() for c in args.classes.split(",") if c.strip()}
         if not keep or keep - set(known):
             print(f"holding_study: error: --classes: choose from {', '.join(known)}", file=sys.stderr)
@@ -67,10 +68,11 @@ def main() -> int:
     elif args.objects == "novel":
         objects = ensure_objects(out / "objects", args.count, args.seed)
     else:
-        from drake_grasp.objects import everyday
+        from drake_grasp.objects import everyday, round as round_objects
         from drake_grasp.sweeps.results import ensure_generated
 
-        objects = ensure_generated(out / "objects", lambda staging: everyday.generate(args.count, args.seed, staging),
+        generator = everyday if args.objects == "everyday" else round_objects
+        objects = ensure_generated(out / "objects", lambda staging: generator.generate(args.count, args.seed, staging),
                                    args.count, (args.seed,))
     if args.classes:
         keep = {c.strip() for c in args.classes.split(",") if c.strip()}

@@ -58,3 +58,46 @@ def test_a_standing_bottle_is_upright_and_takes_the_cylindrical_grasp_after_flat
     assert decision_margin(res) == pytest.approx(min(1.0, 2 * (bottle - 0.5)))
     assert choose_shape({**res, "flat": 0.9}) == "flat"  # a small flat object stays the flower's
     assert choose_shape(res, exclude=("upright",)) == "box"  # the cylindrical grasp failed: tried again
+
+
+def test_a_low_round_object_takes_the_flower_grasp_where_the_sphere_leads():
+    from drake_grasp.grasps import GRASP_OF_SHAPE
+    from drake_grasp.primitives.decision import choose_with_funnels
+    from drake_grasp.primitives.low import LOW_HEIGHT, low_resemblance
+
+    apple, ball = low_resemblance(0.072), low_resemblance(0.22)  # a 7.2 cm apple, a 22 cm football
+    assert apple > 0.99 and ball < 0.01 and math.isnan(low_resemblance(math.nan))
+    assert low_resemblance(LOW_HEIGHT) == pytest.approx(0.5)
+    res = {"sphere": 0.9, "cylinder": 0.1, "box": 0.5, "flat": 0.1, "upright": 0.0, "low": apple}
+    assert choose_shape(res) == "flat" and GRASP_OF_SHAPE["flat"] == "precision"
+    assert choose_shape({**res, "low": ball}) == "sphere"
+    # Only the sphere's choice turns: a low box stays the box grasp's.
+    assert choose_shape({**res, "sphere": 0.2}) == "box"
+    # The flower grasp used up: the paper's sphere again.
+    assert choose_shape(res, exclude=("flat",)) == "sphere"
+    # The funnel's veto of another grasp can leave the sphere, which then turns too.
+    assert choose_with_funnels({**res, "sphere": 0.4}, {"sphere": False, "cylinder": True, "box": True}) == "flat"
+    # The margin: the lead (0.4), bounded by the low resemblance's distance from its threshold.
+    near = {**res, "low": 0.6}
+    assert choose_shape(near) == "flat" and decision_margin(near) == pytest.approx(0.2)
+    assert decision_margin({**res, "low": 1.0}) == pytest.approx(0.4)
+
+
+def test_the_seam_executes_the_flower_grasp_for_a_low_ball_and_the_spherical_one_for_a_tall_ball():
+    """`funnel.planning.choose_grasp`, the one owner of the decision, on a camera's estimate of a ball
+    with the table-top resemblances: 8 cm tall, the flower grasp; 20 cm, the paper's spherical grasp."""
+    import numpy as np
+
+    from drake_grasp.funnel.planning import choose_grasp
+    from drake_grasp.primitives.estimate import ObjectEstimate
+    from drake_grasp.primitives.low import low_resemblance
+
+    for diameter, executed in ((0.08, "precision"), (0.20, "spherical")):
+        estimate = ObjectEstimate(
+            status="ok", centre=np.array([0.55, 0.0, diameter / 2]), depth=0.35,
+            camera_position=np.array([0.55, 0.0, 0.45]), axes=np.eye(3), extents=np.full(3, diameter),
+            principal_axis=None, resemblances={"sphere": 0.9, "cylinder": 0.1, "box": 0.4, "flat": 0.0,
+                                               "upright": 0.0, "low": low_resemblance(diameter)})
+        choice = choose_grasp(estimate, estimate.as_grasp_estimate())
+        assert choice.chosen == choice.executed == executed
+        assert choice.plan.grasp.value == executed

@@ -18,9 +18,10 @@ def add_objects(sub) -> None:
         "users bring: polycubes, scans, mugs, bottles and boxes, every second one a URDF naming its mesh "
         "with a placeholder inertia. --kind flower: the thin, flat and small objects of the flower grasp: "
         "plates and tiles 6-12 mm thick, T and L shapes, sticks and pens, dominoes lying and standing, "
-        "cubes of 2-3 cm, balls and fruit. The same --seed gives byte-identical files.",
+        "cubes of 2-3 cm, balls and fruit. --kind round: low round objects, fruit and balls 4-11 cm, every "
+        "second one a URDF with a real mass. The same --seed gives byte-identical files.",
     )
-    generate.add_argument("--kind", choices=("novel", "everyday", "flower"), default="novel",
+    generate.add_argument("--kind", choices=("novel", "everyday", "flower", "round"), default="novel",
                           help="which generator (default novel)")
     generate.add_argument("--count", type=int, required=True, metavar="N", help="how many objects")
     generate.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
@@ -31,13 +32,14 @@ def add_objects(sub) -> None:
 
 
 def _run_objects_generate(args) -> int:
-    from drake_grasp.objects import everyday, flower, novel
+    from drake_grasp.objects import everyday, flower, novel, round as round_objects
 
     check_seed(args.seed)
     if args.count < 1:
         raise UsageError(f"--count must be >= 1, got {args.count}")
     out = check_out_dir(args.out)
-    rows = {"novel": novel, "everyday": everyday, "flower": flower}[args.kind].generate(args.count, args.seed, out)
+    generator = {"novel": novel, "everyday": everyday, "flower": flower, "round": round_objects}[args.kind]
+    rows = generator.generate(args.count, args.seed, out)
     if args.json:
         print(json.dumps({"out": str(out), "objects": rows}))
     else:

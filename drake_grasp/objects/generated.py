@@ -1,5 +1,5 @@
-"""What the object generators share (`novel`, `everyday`, `flower`, `near_primitives`): Manifold's
-solids as trimesh meshes, and meshes as OBJ text whose bytes depend only on the mesh.
+"""What the object generators share (`novel`, `everyday`, `flower`, `near_primitives`, `round`): Manifold's
+solids as trimesh meshes, meshes as OBJ text whose bytes depend only on the mesh, and the manifest.
 
 Booleans and extrusions use Manifold (the ``manifold3d`` package; https://github.com/elalish/manifold),
 whose operations are guaranteed to return a closed 2-manifold. The OBJ text has a fixed number format
@@ -9,7 +9,10 @@ whose operations are guaranteed to return a closed 2-manifold. The OBJ text has 
 
 from __future__ import annotations
 
+import csv
 import io
+import json
+from pathlib import Path
 
 import numpy as np
 import trimesh
@@ -41,3 +44,14 @@ def obj_text(mesh: trimesh.Trimesh) -> str:
     for a, b, c in mesh.faces:
         out.write(f"f {a + 1} {b + 1} {c + 1}\n")
     return out.getvalue()
+
+
+def write_manifest(out_dir: Path, rows: list[dict], fields: list[str]) -> None:
+    """``manifest.json`` (every row whole) and ``manifest.csv`` (`fields`, the extents as one
+    space-separated cell) of generated objects in `out_dir`."""
+    (out_dir / "manifest.json").write_text(json.dumps(rows, indent=1) + "\n")
+    with open(out_dir / "manifest.csv", "w", newline="") as f:
+        writer = csv.DictWriter(f, fieldnames=fields, lineterminator="\n", extrasaction="ignore")
+        writer.writeheader()
+        for row in rows:
+            writer.writerow({**row, "extents_m": " ".join(f"{e:.6f}" for e in row["extents_m"])})
