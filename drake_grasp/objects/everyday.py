@@ -27,15 +27,13 @@ count.
 
 from __future__ import annotations
 
-import csv
-import json
-import math
 from pathlib import Path
 
 import numpy as np
 import trimesh
 
-from drake_grasp.objects.generated import CIRCULAR_SEGMENTS, manifold, obj_text, to_trimesh
+from drake_grasp.objects.generated import (CIRCULAR_SEGMENTS, manifold, one_link_urdf, placed_on_table,
+                                          to_trimesh, write_generated, write_manifest)
 
 CLASSES = ("polycube", "scan", "mug", "bottle", "box")
 FORMATS = ("mesh", "urdf")
@@ -127,12 +125,7 @@ def everyday_object(seed: int, index: int) -> tuple[str, str, trimesh.Trimesh]:
     rng = np.random.default_rng([seed, index])
     shape_class = CLASSES[index % len(CLASSES)]
     mesh = _GENERATORS[shape_class](rng)
-    mesh.apply_transform(trimesh.transformations.rotation_matrix(rng.uniform(0.0, 2.0 * math.pi), [0, 0, 1]))
-    low, high = mesh.bounds
-    mesh.apply_translation([-(low[0] + high[0]) / 2.0, -(low[1] + high[1]) / 2.0, -low[2]])
-    mesh.vertices = np.round(mesh.vertices, 6)  # what the file holds (µm)
-    if mesh.volume < 0:
-        mesh.invert()
+    placed_on_table(mesh, rng)
     return f"{shape_class}_{seed}_{index:03d}", shape_class, mesh
 
 
@@ -143,9 +136,7 @@ def format_of(index: int) -> str:
 
 def urdf_text(name: str, mesh_file: str) -> str:
     """A one-link URDF naming `mesh_file` for its visual and collision, with a placeholder inertia."""
-    geometry = f'<geometry><mesh filename="{mesh_file}"/></geometry>'
-    return (f'<?xml version="1.0"?>\n<robot name="{name}">\n  <link name="{name}">\n    {PLACEHOLDER_INERTIAL}\n'
-            f'    <visual>{geometry}</visual>\n    <collision>{geometry}</collision>\n  </link>\n</robot>\n')
+    return one_link_urdf(name, mesh_file, PLACEHOLDER_INERTIAL)
 
 
 def generate(count: int, seed: int, out_dir: str | Path) -> list[dict]:
@@ -157,21 +148,7 @@ def generate(count: int, seed: int, out_dir: str | Path) -> list[dict]:
     rows = []
     for index in range(count):
         name, shape_class, mesh = everyday_object(seed, index)
-        kind = format_of(index)
-        (out_dir / f"{name}.obj").write_text(obj_text(mesh))
-        file, assets = f"{name}.obj", []
-        if kind == "urdf":
-            (out_dir / f"{name}.urdf").write_text(urdf_text(name, f"{name}.obj"))
-            file, assets = f"{name}.urdf", [f"{name}.obj"]
-        rows.append({"file": file, "assets": assets, "class": shape_class, "format": kind, "seed": seed,
-                     "index": index, "size_m": round(float(np.max(mesh.extents)), 6),
-                     "extents_m": [round(float(e), 6) for e in mesh.extents],
-                     "volume_m3": float(f"{mesh.volume:.6e}")})
-    (out_dir / "manifest.json").write_text(json.dumps(rows, indent=1) + "\n")
-    with open(out_dir / "manifest.csv", "w", newline="") as f:
-        fields = ["file", "class", "format", "seed", "index", "size_m", "extents_m", "volume_m3"]
-        writer = csv.DictWriter(f, fieldnames=fields, lineterminator="\n", extrasaction="ignore")
-        writer.writeheader()
-        for row in rows:
-            writer.writerow({**row, "extents_m": " ".join(f"{e:.6f}" for e in row["extents_m"])})
+        urdf = urdf_text(name, f"{name}.obj") if format_of(index) == "urdf" else None
+        rows.append(write_generated(out_dir, name, mesh, shape_class, seed, index, urdf))
+    write_manifest(out_dir, rows, ["file", "class", "format", "seed", "index", "size_m", "extents_m", "volume_m3"])
     return rows

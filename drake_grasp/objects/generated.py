@@ -1,5 +1,6 @@
-"""What the object generators share (`novel`, `everyday`, `flower`, `near_primitives`, `round`): Manifold's
-solids as trimesh meshes, meshes as OBJ text whose bytes depend only on the mesh, and the manifest.
+"""What the object generators share (`novel`, `everyday`, `flower`, `near_primitives`, `round`):
+Manifold's solids as trimesh meshes, meshes as OBJ text whose bytes depend only on the mesh, a mesh
+placed on the table, a one-link URDF, and the files and manifest they write.
 
 Booleans and extrusions use Manifold (the ``manifold3d`` package; https://github.com/elalish/manifold),
 whose operations are guaranteed to return a closed 2-manifold. The OBJ text has a fixed number format
@@ -12,6 +13,7 @@ from __future__ import annotations
 import csv
 import io
 import json
+import math
 from pathlib import Path
 
 import numpy as np
@@ -55,3 +57,39 @@ def write_manifest(out_dir: Path, rows: list[dict], fields: list[str]) -> None:
         writer.writeheader()
         for row in rows:
             writer.writerow({**row, "extents_m": " ".join(f"{e:.6f}" for e in row["extents_m"])})
+
+
+def write_generated(out_dir: Path, name: str, mesh: trimesh.Trimesh, shape_class: str, seed: int, index: int,
+                    urdf: str | None = None, **extra) -> dict:
+    """Writes generated object `name`: its mesh as ``name.obj`` and, given `urdf` (the text of a URDF
+    naming that OBJ), ``name.urdf``. Returns its manifest row: "file" is what a user passes as
+    ``--object``, "assets" the other files it needs, then its class, format ("mesh" or "urdf"), seed,
+    index, largest extent, extents (m), volume (m³) and `extra`."""
+    (out_dir / f"{name}.obj").write_text(obj_text(mesh))
+    file, assets, kind = f"{name}.obj", [], "mesh"
+    if urdf is not None:
+        (out_dir / f"{name}.urdf").write_text(urdf)
+        file, assets, kind = f"{name}.urdf", [f"{name}.obj"], "urdf"
+    return {"file": file, "assets": assets, "class": shape_class, "format": kind, "seed": seed, "index": index,
+            "size_m": round(float(np.max(mesh.extents)), 6), "extents_m": [round(float(e), 6) for e in mesh.extents],
+            "volume_m3": float(f"{mesh.volume:.6e}"), **extra}
+
+
+def one_link_urdf(name: str, mesh_file: str, inertial: str) -> str:
+    """A one-link URDF named `name` whose visual and collision are `mesh_file`, with the `inertial`
+    element given as XML text."""
+    geometry = f'<geometry><mesh filename="{mesh_file}"/></geometry>'
+    return (f'<?xml version="1.0"?>\n<robot name="{name}">\n  <link name="{name}">\n    {inertial}\n'
+            f'    <visual>{geometry}</visual>\n    <collision>{geometry}</collision>\n  </link>\n</robot>\n')
+
+
+def placed_on_table(mesh: trimesh.Trimesh, rng: np.random.Generator) -> trimesh.Trimesh:
+    """`mesh` turned about z by an angle drawn from `rng`, centred in x and y, resting on z = 0, its
+    vertices rounded to what an OBJ file holds (µm) and wound outward (in place; returned)."""
+    mesh.apply_transform(trimesh.transformations.rotation_matrix(rng.uniform(0.0, 2.0 * math.pi), [0, 0, 1]))
+    low, high = mesh.bounds
+    mesh.apply_translation([-(low[0] + high[0]) / 2.0, -(low[1] + high[1]) / 2.0, -low[2]])
+    mesh.vertices = np.round(mesh.vertices, 6)
+    if mesh.volume < 0:
+        mesh.invert()
+    return mesh

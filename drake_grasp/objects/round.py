@@ -18,13 +18,12 @@ i])``: the same (seed, index) gives byte-identical files whatever the count.
 
 from __future__ import annotations
 
-import math
 from pathlib import Path
 
 import numpy as np
 import trimesh
 
-from drake_grasp.objects.generated import obj_text, write_manifest
+from drake_grasp.objects.generated import one_link_urdf, placed_on_table, write_generated, write_manifest
 
 CLASSES = ("round",)
 SIZE_RANGE = (0.04, 0.11)  # m: the largest horizontal diameter before stretching
@@ -45,12 +44,7 @@ def round_object(seed: int, index: int) -> tuple[str, trimesh.Trimesh, float | N
     unit = sphere.vertices
     vertices = unit * (1.0 + lump * np.sin(unit @ waves).sum(axis=1, keepdims=True) / 3.0) * axes
     mesh = trimesh.Trimesh(vertices, sphere.faces, process=True)
-    mesh.apply_transform(trimesh.transformations.rotation_matrix(rng.uniform(0.0, 2.0 * math.pi), [0, 0, 1]))
-    low, high = mesh.bounds
-    mesh.apply_translation([-(low[0] + high[0]) / 2.0, -(low[1] + high[1]) / 2.0, -low[2]])
-    mesh.vertices = np.round(mesh.vertices, 6)  # what the file holds (µm)
-    if mesh.volume < 0:
-        mesh.invert()
+    placed_on_table(mesh, rng)
     density = rng.uniform(*DENSITY_RANGE)
     mass = float(mesh.volume * density) if index % 2 == 1 else None
     return f"round_{seed}_{index:03d}", mesh, mass
@@ -61,32 +55,24 @@ def urdf_text(name: str, mesh_file: str, mesh: trimesh.Trimesh, mass: float) -> 
     its centre of mass."""
     inertia = mesh.moment_inertia * (mass / mesh.volume)
     com = mesh.center_mass
-    geometry = f'<geometry><mesh filename="{mesh_file}"/></geometry>'
-    return (f'<?xml version="1.0"?>\n<robot name="{name}">\n  <link name="{name}">\n'
-            f'    <inertial><origin xyz="{com[0]:.6f} {com[1]:.6f} {com[2]:.6f}"/><mass value="{mass:.6f}"/>'
-            f'<inertia ixx="{inertia[0, 0]:.6e}" ixy="{inertia[0, 1]:.6e}" ixz="{inertia[0, 2]:.6e}" '
-            f'iyy="{inertia[1, 1]:.6e}" iyz="{inertia[1, 2]:.6e}" izz="{inertia[2, 2]:.6e}"/></inertial>\n'
-            f'    <visual>{geometry}</visual>\n    <collision>{geometry}</collision>\n  </link>\n</robot>\n')
+    return one_link_urdf(name, mesh_file,
+                         f'<inertial><origin xyz="{com[0]:.6f} {com[1]:.6f} {com[2]:.6f}"/><mass value="{mass:.6f}"/>'
+                         f'<inertia ixx="{inertia[0, 0]:.6e}" ixy="{inertia[0, 1]:.6e}" ixz="{inertia[0, 2]:.6e}" '
+                         f'iyy="{inertia[1, 1]:.6e}" iyz="{inertia[1, 2]:.6e}" izz="{inertia[2, 2]:.6e}"/></inertial>')
 
 
 def generate(count: int, seed: int, out_dir: str | Path) -> list[dict]:
-    """Writes `count` objects (indices 0..count-1 of `seed`) into `out_dir`, a URDF's mesh beside it,
-    with ``manifest.json`` and ``manifest.csv``. Returns the manifest rows: "file" is what a user
-    passes as ``--object``, "assets" the other files it needs."""
+    """Objects 0..count-1 of `seed` written into `out_dir` (`generated.write_generated`: a URDF beside
+    its mesh) with their manifest; returns its rows, each with the URDF's mass ("mass_kg", None for a
+    bare mesh)."""
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     rows = []
     for index in range(count):
         name, mesh, mass = round_object(seed, index)
-        (out_dir / f"{name}.obj").write_text(obj_text(mesh))
-        file, assets, kind = f"{name}.obj", [], "mesh"
-        if mass is not None:
-            (out_dir / f"{name}.urdf").write_text(urdf_text(name, f"{name}.obj", mesh, mass))
-            file, assets, kind = f"{name}.urdf", [f"{name}.obj"], "urdf"
-        rows.append({"file": file, "assets": assets, "class": "round", "format": kind, "seed": seed,
-                     "index": index, "size_m": round(float(np.max(mesh.extents)), 6),
-                     "extents_m": [round(float(e), 6) for e in mesh.extents],
-                     "volume_m3": float(f"{mesh.volume:.6e}"), "mass_kg": None if mass is None else round(mass, 6)})
+        urdf = None if mass is None else urdf_text(name, f"{name}.obj", mesh, mass)
+        rows.append(write_generated(out_dir, name, mesh, "round", seed, index, urdf,
+                                    mass_kg=None if mass is None else round(mass, 6)))
     write_manifest(out_dir, rows, ["file", "class", "format", "seed", "index", "size_m", "extents_m", "volume_m3",
                                    "mass_kg"])
     return rows
