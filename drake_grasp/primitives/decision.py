@@ -17,9 +17,10 @@ known table), so it decides first:
    silhouettes' box resemblance saturates on;
 3. otherwise the paper's argmax over sphere, cylinder and box; where it picks the sphere and the low
    resemblance (`primitives.low`, also from the table-top estimate) is at least `LOW_THRESHOLD` (1/2:
-   standing lower than the fingers' sweep, 10.4 cm), **flat** instead: the spherical grasp's rounded fingertips meet such an
-   object below its equator and pop it out, and the flower grasp, landed on the table round it, holds it
-   (docs/design.md §5.4i). A flat grasp already used up (`exclude`) leaves the paper's sphere;
+   standing lower than the fingers' sweep, 10.4 cm), **flat** instead: the spherical grasp's rounded
+   fingertips meet such an object below its equator and pop it out, and the flower grasp, landed on
+   the table round it, holds it (docs/design.md §5.4i). A flat grasp already used up (`exclude`) leaves
+   the paper's sphere;
 4. with the funnel search (`funnel.search`, a scenario's `perception.grasp_search`): a grasp whose
    funnel on the shape the camera saw is empty (ε = 0 at every pose scored) is not chosen when another's
    is not; the most resembling of those with a funnel is (`choose_with_funnels`). The paper's argmax
