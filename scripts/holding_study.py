@@ -4,11 +4,11 @@ Generated objects of a generator seed, or your own object files (`--files LIST.t
 the novel classes (`--objects novel`, `drake-grasp objects generate`: blobs, unions, plates, L and T
 shapes, rings and handles) or everyday ones (`--objects everyday`, `objects.everyday`: polycubes,
 scans, mugs, bottles and boxes, every second one a URDF with a placeholder inertia) or low round ones
-(`--objects round`, `objects.round`: fruit and balls 4-11 cm). Each object goes
-through the compliance-centric algorithm's own choice (camera only) with `--attempts N`, under each scenario named (the "before" and "after" columns: e.g. the
-table-top estimate alone, and the funnel search), over trial seeds. The first attempt's outcome is the
-paper's protocol; within N counts a hold at any attempt (`trial.attempts`). Resumable (the sweeps'
-runner: rerun the same command to go on).
+(`--objects round`, `objects.round`: fruit and balls 4-11 cm). Each object goes through the
+compliance-centric algorithm's own choice (camera only) with `--attempts N`, under each scenario named
+(the "before" and "after" columns: e.g. the table-top estimate alone, and the funnel search), over
+trial seeds. The first attempt's outcome is the paper's protocol; within N counts a hold at any
+attempt (`trial.attempts`). Resumable (the sweeps' runner: rerun the same command to go on).
 
 A files list has one object a line: its class, its path (relative to the list) and optionally its
 --scale, tab-separated; lines starting with # are skipped.
@@ -113,11 +113,12 @@ def main() -> int:
         chose[spec.scenario_name][(attempts[0]["grasp"] if attempts else r["grasp"] or extra.get("chosen")) or "-"] += 1
         tries[spec.scenario_name].append(len(attempts) or 1)
     classes = sorted({c for _, c in counts} - {"all"}) + ["all"]
-    source = (f"--files {args.files}" if args.files else f"--objects {args.objects} --count {args.count} --seed {args.seed}")
+    source = (f"--files {args.files}" if args.files
+              else f"--objects {args.objects} --count {args.count} --seed {args.seed}")
     what = (f"{len(objects)} object files of {args.files}" if args.files
             else f"{len(objects)} objects of generator seed {args.seed}")
-    lines = [f"# Holding what users bring: {'object files' if args.files else 'generated ' + args.objects + ' objects'}, "
-             f"first attempt and within {args.attempts}",
+    title = "object files" if args.files else f"generated {args.objects} objects"
+    lines = [f"# Holding what users bring: {title}, first attempt and within {args.attempts}",
              "", f"`scripts/holding_study.py {source} --seeds {args.seeds} "
              f"--attempts {args.attempts} --scenarios {args.scenarios}"
              + (f" --classes {args.classes}" if args.classes else "") + f"`: {what}, trial seeds {args.seeds}, "
