@@ -102,7 +102,8 @@ def decision_margin(resemblances: dict) -> float:
         if upright >= UPRIGHT_THRESHOLD:
             return bound
     low = _value(resemblances, LOW)
-    if math.isfinite(low) and choose_shape({s: resemblances[s] for s in SHAPES if s in resemblances}) == "sphere":
+    leader = max((s for s in SHAPES if s in resemblances), key=lambda s: _value(resemblances, s))
+    if math.isfinite(low) and leader == "sphere":
         bound = min(bound, 2.0 * abs(low - LOW_THRESHOLD))
     return min(lead, bound)
 
