@@ -101,3 +101,32 @@ def test_the_seam_executes_the_flower_grasp_for_a_low_ball_and_the_spherical_one
         choice = choose_grasp(estimate, estimate.as_grasp_estimate())
         assert choice.chosen == choice.executed == executed
         assert choice.plan.grasp.value == executed
+
+
+def test_a_round_object_takes_the_spherical_grasp_where_the_box_leads():
+    from drake_grasp.primitives.decision import choose_with_funnels
+    from drake_grasp.primitives.low import FLOWER_MAX_WIDTH, low_resemblance
+    from drake_grasp.primitives.round_sides import round_resemblance
+
+    ring = round_resemblance(0.012, [0.23, 0.22])  # sides curving away, a round footprint
+    box = round_resemblance(0.0005, [0.12, 0.10])  # a level top at vertical sides
+    banana = round_resemblance(0.012, [0.20, 0.04])  # round sides, a slender footprint
+    assert ring > 0.99 and box < 0.01 and banana < 0.01
+    assert math.isnan(round_resemblance(math.nan, [0.1, 0.1])) and math.isnan(round_resemblance(0.01, [0.1, 0.0]))
+    # A 23 cm ring 8 cm tall is low but wider than the flower grasp lands round: it keeps the sphere.
+    wide, narrow = low_resemblance(0.08, [0.23, 0.23]), low_resemblance(0.08, [0.10, 0.10])
+    assert wide < 0.01 and narrow > 0.99 and low_resemblance(0.08, [FLOWER_MAX_WIDTH] * 2) == pytest.approx(0.5, abs=0.01)
+    res = {"sphere": 0.05, "cylinder": 0.01, "box": 0.95, "flat": 0.1, "upright": 0.0, "low": wide, "round": ring}
+    assert choose_shape(res) == "sphere"
+    assert choose_shape({**res, "round": box}) == "box" and choose_shape({**res, "round": banana}) == "box"
+    # A low round object that the flower grasp lands round: the box turns to the sphere, the sphere to
+    # the flower grasp.
+    assert choose_shape({**res, "low": narrow}) == "flat"
+    # The spherical grasp used up (or its funnel empty): the box again.
+    assert choose_shape(res, exclude=("sphere",)) == "box"
+    assert choose_with_funnels(res, {"sphere": True, "cylinder": False, "box": False}) == "box"
+    # The cylinder's lead is the paper's: a lying cylinder keeps its grasp.
+    assert choose_shape({**res, "cylinder": 0.99}) == "cylinder"
+    # The margin: the box's lead (0.9), bounded by the round resemblance's distance from its threshold.
+    near = {**res, "round": 0.7}
+    assert choose_shape(near) == "sphere" and decision_margin(near) == pytest.approx(0.4)

@@ -237,3 +237,22 @@ def test_a_short_exploration_with_depth_views_places_an_L_by_its_mass(tmp_path):
     u = estimate.table_top["uncertainty"]
     assert 0 < u["centre"] < 0.01 and estimate.table_top["views"] >= 8
     assert dc.asdict(config.table_top)["cell"] == 0.003
+
+
+def _ball_top(centre, radius):
+    def top(X, Y):
+        r2 = (X - centre[0]) ** 2 + (Y - centre[1]) ** 2
+        return np.where(r2 <= radius**2, radius + np.sqrt(np.maximum(radius**2 - r2, 0.0)), np.nan)
+
+    return top
+
+
+def test_the_edge_rise_tells_vertical_sides_from_round_ones():
+    xs, ys = np.arange(0.40, 0.65, 0.001), np.arange(-0.12, 0.13, 0.001)
+    box = table_top.estimate(_map_of(_surface_points(_rotated_box_top((0.52, 0.01), 0.09, 0.07, 0.05, 0.3), xs, ys)))
+    ball = table_top.estimate(_map_of(_surface_points(_ball_top((0.52, 0.01), 0.035), xs, ys)))
+    assert box.edge_rise < 0.001  # a level top at a vertical side
+    assert ball.edge_rise > 0.006  # the top curves up from a round side
+    assert math.isnan(table_top.edge_rise(np.zeros((4, 4))))
+    again = TableTopVector.from_vector(TableTopVector(ball, None, False, 3).to_vector())
+    assert again.estimate.edge_rise == pytest.approx(ball.edge_rise)

@@ -15,12 +15,19 @@ known table), so it decides first:
    wide, and narrower than the hand wraps): the cylindrical grasp round the vertical axis, from the
    arm's side (`grasps.cylindrical_grasp`). Like flatness, it is a measured shape that the
    silhouettes' box resemblance saturates on;
-3. otherwise the paper's argmax over sphere, cylinder and box; where it picks the sphere and the low
-   resemblance (`primitives.low`, also from the table-top estimate) is at least `LOW_THRESHOLD` (1/2:
-   standing lower than the fingers' sweep, 10.4 cm), **flat** instead: the spherical grasp's rounded
-   fingertips meet such an object below its equator and pop it out, and the flower grasp, landed on
-   the table round it, holds it (docs/design.md §5.4i). A flat grasp already used up (`exclude`) leaves
-   the paper's sphere;
+3. otherwise the paper's argmax over sphere, cylinder and box, refined by two measured shapes:
+
+   a. where it picks the box and the round resemblance (`primitives.round_sides`, from the table-top
+      estimate) is at least `ROUND_THRESHOLD` (1/2: sides that curve away below the top, on a compact
+      footprint), the **sphere** instead: the box resemblance saturates on every irregular solid, and
+      three fingers round a ring or a blob hold it where two against one slip (docs/design.md §5.4j).
+      A sphere already used up (`exclude`) leaves the box;
+   b. where the sphere is chosen (by the argmax or by a.) and the low resemblance (`primitives.low`)
+      is at least `LOW_THRESHOLD` (1/2: standing lower than the fingers' sweep, 10.4 cm, and narrow
+      enough for the flower grasp to land round it), **flat** instead: the spherical grasp's rounded
+      fingertips meet such an object below its equator and pop it out, and the flower grasp, landed
+      on the table round it, holds it (docs/design.md §5.4i). A flat grasp already used up leaves the
+      sphere;
 4. with the funnel search (`funnel.search`, a scenario's `perception.grasp_search`): a grasp whose
    funnel on the shape the camera saw is empty (ε = 0 at every pose scored) is not chosen when another's
    is not; the most resembling of those with a funnel is (`choose_with_funnels`). The paper's argmax
@@ -31,7 +38,7 @@ known table), so it decides first:
 The *margin* says how clear the decision was, in [0, 1]: in step 3, the lead of the best resemblance
 over the next; a flat resemblance near its threshold makes any decision close, so its own distance
 from the threshold, 2 |flat - 1/2|, bounds the margin from above, and so does the upright one's, and
-the low one's where the sphere leads.
+the low one's where the sphere leads, and the round one's where the box leads.
 Without those resemblances (the paper's perception), both are the paper's argmax and its lead.
 """
 
@@ -41,11 +48,13 @@ from drake_grasp.primitives.scores import SHAPES
 
 FLAT = "flat"
 UPRIGHT = "upright"
-LOW = "low"  # not a choice: it turns the sphere's choice into the flat one (step 3)
+LOW = "low"  # not a choice: it turns the sphere's choice into the flat one (step 3b)
+ROUND = "round"  # not a choice: it turns the box's choice into the sphere's (step 3a)
 CHOICES = SHAPES + (FLAT, UPRIGHT)
 FLAT_THRESHOLD = 0.5
 UPRIGHT_THRESHOLD = 0.5
 LOW_THRESHOLD = 0.5
+ROUND_THRESHOLD = 0.5
 
 
 def _value(resemblances: dict, shape: str) -> float:
@@ -68,12 +77,15 @@ def choose_shape(resemblances: dict, exclude=()) -> str | None:
     if UPRIGHT not in exclude and math.isfinite(upright) and upright >= UPRIGHT_THRESHOLD:
         return UPRIGHT
     shapes = [s for s in SHAPES if s not in exclude] or list(SHAPES)
-    return _low_round_is_flat(max(shapes, key=lambda s: resemblances.get(s, -1.0)), resemblances, exclude)
+    return _refined(max(shapes, key=lambda s: resemblances.get(s, -1.0)), resemblances, exclude)
 
 
-def _low_round_is_flat(shape: str, resemblances: dict, exclude=()) -> str:
-    """`shape`, or FLAT where it is the sphere and the low resemblance reaches `LOW_THRESHOLD` (step 3),
-    unless FLAT is excluded."""
+def _refined(shape: str, resemblances: dict, exclude=()) -> str:
+    """The argmax's `shape` refined by the measured shapes (step 3): a round object's box is the sphere
+    (3a), a low object's sphere the flat choice (3b); a choice in `exclude` is not made."""
+    round_ = _value(resemblances, ROUND)
+    if shape == "box" and "sphere" not in exclude and math.isfinite(round_) and round_ >= ROUND_THRESHOLD:
+        shape = "sphere"
     low = _value(resemblances, LOW)
     if shape == "sphere" and FLAT not in exclude and math.isfinite(low) and low >= LOW_THRESHOLD:
         return FLAT
@@ -101,8 +113,13 @@ def decision_margin(resemblances: dict) -> float:
         bound = min(bound, 2.0 * abs(upright - UPRIGHT_THRESHOLD))
         if upright >= UPRIGHT_THRESHOLD:
             return bound
-    low = _value(resemblances, LOW)
     leader = max((s for s in SHAPES if s in resemblances), key=lambda s: _value(resemblances, s))
+    round_ = _value(resemblances, ROUND)
+    if math.isfinite(round_) and leader == "box":
+        bound = min(bound, 2.0 * abs(round_ - ROUND_THRESHOLD))
+        if round_ >= ROUND_THRESHOLD:
+            leader = "sphere"
+    low = _value(resemblances, LOW)
     if math.isfinite(low) and leader == "sphere":
         bound = min(bound, 2.0 * abs(low - LOW_THRESHOLD))
     return min(lead, bound)
@@ -122,4 +139,5 @@ def choose_with_funnels(resemblances: dict, empty: dict, exclude=()) -> str | No
     open_shapes = [s for s in SHAPES if s in empty and not empty[s] and s not in exclude]
     if not open_shapes:
         return chosen
-    return _low_round_is_flat(max(open_shapes, key=lambda s: resemblances.get(s, -1.0)), resemblances, exclude)
+    vetoed = tuple(exclude) + tuple(s for s in SHAPES if empty.get(s, False))
+    return _refined(max(open_shapes, key=lambda s: resemblances.get(s, -1.0)), resemblances, vetoed)

@@ -26,6 +26,7 @@ from drake_grasp.primitives.exploration_cost import CostVector
 from drake_grasp.primitives.estimators import is_upright
 from drake_grasp.primitives.flat import table_top_flatness
 from drake_grasp.primitives.low import table_top_lowness
+from drake_grasp.primitives.round_sides import table_top_roundness
 from drake_grasp.primitives.upright import table_top_uprightness
 from drake_grasp.primitives.scores import SHAPES
 from drake_grasp.primitives.sequencer import ExplorationPhase, phase_value
@@ -294,7 +295,8 @@ def with_table_top(estimate: ObjectEstimate, table_top, elongated: bool) -> Obje
     return dataclasses.replace(
         estimate, centre=centre, depth=float(np.linalg.norm(centre - estimate.camera_position)), axes=axes,
         principal_axis=principal_axis, extents=extents,
-        resemblances={**estimate.resemblances, "flat": flat, "upright": upright, "low": table_top_lowness(t)},
+        resemblances={**estimate.resemblances, "flat": flat, "upright": upright, "low": table_top_lowness(t),
+                      "round": table_top_roundness(t)},
         evidence={**estimate.evidence, **flat_evidence},
         table_top={"views": table_top.views, "cells": t.cells, "clipped": table_top.clipped,
                    "uncertainty": uncertainty, "silhouettes": silhouettes, "table_z": table_top.table_height})
@@ -311,7 +313,7 @@ class ObjectEstimator(LeafSystem):
         axis (3), axis_info (3): from the principal axis primitive.
         sphere_resemblance, cylinder_resemblance, box_resemblance (1 each): in [0, 1].
         evidence (9): from the box resemblance primitive (its `evidence` output).
-        table_top (26, optional): `depth_views.TableTopVector`; unconnected, the silhouettes' estimate.
+        table_top (27, optional): `depth_views.TableTopVector`; unconnected, the silhouettes' estimate.
         exploration_cost (4, optional): `exploration_cost.CostVector`, what the exploration cost so far.
         exploration_outcome (abstract dict, optional): the sequencer's `outcome` (what kind of exploration
             ran); unconnected, "full".

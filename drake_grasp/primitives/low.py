@@ -10,7 +10,10 @@ true pose, on 12 low round solids 3.7-9.7 cm tall (fruit and balls, lumpy ellips
 grasp lands its fingertips on the table around the object and closes from below its equator.
 
 So where the paper's argmax picks the sphere, an object this low takes the flower grasp instead
-(`primitives.decision`). The height is measured, not inferred from silhouettes: the table-top
+(`primitives.decision`), if the flower grasp can land round it: the footprint's shorter side at most
+`FLOWER_MAX_WIDTH` (15.3 cm: the fingertips' reach at the flower's widest preshape, less its margin,
+both sides; `grasps.flower_landing_angle`). A wider one (a 23 cm ring 8 cm tall) keeps the sphere,
+which the flower grasp cannot close round. The height is measured, not inferred from silhouettes: the table-top
 estimate's height above the table (as for the flat and upright resemblances, `primitives.flat`,
 `primitives.upright`). The resemblance is a logistic step down in that height, 1/2 at `LOW_HEIGHT`,
 the fingers' sweep at the spherical spread (10.4 cm), width `LOW_WIDTH`. Where exactly the spherical
@@ -21,21 +24,32 @@ and 2/2. The sweep is where the mechanism above says it must fail; the width is 
 
 import math
 
+import numpy as np
+
+from drake_grasp.grasps import FLOWER_MARGIN, FLOWER_PRESHAPE_RANGE
 from drake_grasp.primitives.flat import step_down
 from drake_grasp.robot import hand
 
 LOW_HEIGHT = hand.fingertip_sweep_depth(hand.ComplianceMode.SPHERICAL.spread)  # m, 0.104
 LOW_WIDTH = 0.004  # m
+FLOWER_MAX_WIDTH = 2.0 * (hand.fingertip_reach(FLOWER_PRESHAPE_RANGE[0], hand.ComplianceMode.CYLINDRICAL.spread)
+                          - FLOWER_MARGIN)  # m, 0.153
+FLOWER_MAX_WIDTH_WIDTH = 0.005  # m
 
 
-def low_resemblance(height: float) -> float:
-    """The resemblance in [0, 1] of an object standing `height` m above the table; NaN when the height
-    is not finite."""
+def low_resemblance(height: float, footprint=None) -> float:
+    """The resemblance in [0, 1] of an object standing `height` m above the table whose footprint spans
+    `footprint` (m, its two horizontal sides; None: not known, no width limit); NaN when the height is
+    not finite."""
     if not math.isfinite(height):
         return math.nan
-    return step_down(float(height), LOW_HEIGHT, LOW_WIDTH)
+    low = step_down(float(height), LOW_HEIGHT, LOW_WIDTH)
+    if footprint is not None and np.all(np.isfinite(np.asarray(footprint, float))):
+        low *= step_down(float(np.min(footprint)), FLOWER_MAX_WIDTH, FLOWER_MAX_WIDTH_WIDTH)
+    return low
 
 
 def table_top_lowness(estimate) -> float:
-    """`low_resemblance` of a table-top estimate (`table_top.TableTopEstimate`): its height above the table."""
-    return low_resemblance(float(estimate.height))
+    """`low_resemblance` of a table-top estimate (`table_top.TableTopEstimate`): its height above the
+    table and its spans along its footprint's sides."""
+    return low_resemblance(float(estimate.height), np.asarray(estimate.extents_sides, float)[:2])

@@ -153,7 +153,7 @@ class ExplorationSequencer(LeafSystem):
             eccentricity, ...] (the hypothesis reads the mean eccentricity).
         evidence (9, minimal exploration): the box primitive's `scores.ShapeEvidence` vector (it
             records every view of the confirming arc).
-        table_top (26, optional): `depth_views.TableTopVector` (the flat hypothesis; none without it).
+        table_top (27, optional): `depth_views.TableTopVector` (the flat hypothesis; none without it).
     Output ports:
         depth_command, axis_command (1 each): PrimitiveCommand values.
         resemblance_command (1): the resemblance primitives' command of the paper's phases.

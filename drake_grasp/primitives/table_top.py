@@ -233,6 +233,8 @@ class TableTopEstimate:
         cells: occupied cells.
         centre_bracket: half the distance between the two vertical centres (the solid's centroid and
             half the height), m: the vertical centre's model uncertainty.
+        edge_rise: how much the map rises just inside the footprint's edge (`edge_rise`), m: about 0
+            for vertical sides (a box, a mug, a polycube), a centimetre for a round solid's.
     """
 
     centre: np.ndarray
@@ -243,6 +245,32 @@ class TableTopEstimate:
     height: float
     cells: int
     centre_bracket: float = 0.0
+    edge_rise: float = math.nan
+
+
+# How far inside the footprint's edge the edge rise looks, in cells (3 mm: 6 mm in).
+EDGE_REACH = 2
+
+
+def edge_rise(heights: np.ndarray, reach: int = EDGE_REACH) -> float:
+    """How much the height map rises just inside the footprint's edge, m: over the footprint's boundary
+    cells (an occupied cell with an empty one of its four neighbours), the median of the highest cell
+    within `reach` cells of it less its own height. NaN with no occupied cell.
+
+    Seen from above, a side that stands vertical ends in a top that is level at the edge (a box, a mug's
+    rim, each tier of a polycube: 0-1 mm over 6 mm); a round side curves away below the top (a ball,
+    fruit, a scan: 7-17 mm for solids 3-10 cm tall). It says whether the widest part of the object is at
+    the top of its sides or lower down, where a grasp from above cannot see it (`primitives.round_sides`).
+    The median keeps a handle or a step from deciding it."""
+    from scipy import ndimage
+
+    h = np.asarray(heights, float)
+    occupied = h > 0
+    if not np.any(occupied):
+        return math.nan
+    boundary = occupied & ~ndimage.binary_erosion(occupied)
+    near = ndimage.maximum_filter(h, size=2 * reach + 1, mode="constant", cval=0.0)
+    return float(np.median((near - h)[boundary]))
 
 
 def min_area_rectangle(points_xy: np.ndarray) -> tuple[float, np.ndarray]:
@@ -308,7 +336,7 @@ def estimate(height_map: HeightMap, min_cells: int = 3) -> TableTopEstimate | No
         centre=centre, principal_axis=axis, sides=sides,
         extents_axis=_outline_spans(ends, axis_frame, xy, outline),
         extents_sides=_outline_spans(ends, side_frame, xy, outline), height=top, cells=len(h),
-        centre_bracket=0.5 * (z_high - z_low))
+        centre_bracket=0.5 * (z_high - z_low), edge_rise=edge_rise(height_map.filled_heights()))
 
 
 def _outline_spans(ends: np.ndarray, directions, xy: np.ndarray, outline: np.ndarray | None) -> np.ndarray:

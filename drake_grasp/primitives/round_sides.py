@@ -1,0 +1,53 @@
+"""The round resemblance: how much an object is round like a ball, from above and at its sides.
+
+The paper's silhouettes cannot tell a ball-like solid from a box: the box resemblance measures how much
+the silhouette's area changes under the camera's arcs, and saturates on every irregular solid (the
+novel generator's blobs and rings, scans, the PyBullet random objects; docs/results/flower.md). So the
+box grasp is chosen for them, and it closes two fingers against one across a solid whose sides curve
+away: on the dev seeds' rings and blobs it held 12 of 24 trials from the camera, the spherical grasp,
+three fingers round it, 16 (docs/design.md §5.4j).
+
+What tells them apart is a measured shape, from the table-top height map (as for the flat, upright and
+low resemblances):
+
+* **round sides**: the map's *edge rise* (`table_top.edge_rise`), how much it rises within 6 mm inside
+  the footprint's edge. Seen from above, a vertical side ends in a level top (0-1 mm on the everyday
+  generator's boxes, mugs and polycubes, and on real mugs, cups and bowls); a round side curves up from
+  the edge (5-29 mm on round solids, rings, blobs and scans 3-24 cm tall). A logistic step up, 1/2 at
+  `ROUND_RISE` (4 mm), width `ROUND_RISE_WIDTH`;
+* **a compact footprint**: its longer side at most `COMPACT_RATIO` (1.6) times its shorter (a ring or a
+  ball 1, a lumpy blob up to about 1.5); a banana or a screwdriver lying down has round sides too, and
+  the box or cylindrical grasp across its length is the one for it. A logistic step down, width
+  `COMPACT_RATIO_WIDTH`.
+
+The resemblance is their product. Both middles are choices between the groups measured.
+"""
+
+import math
+
+import numpy as np
+
+from drake_grasp.primitives.flat import step_down
+
+ROUND_RISE = 0.004  # m
+ROUND_RISE_WIDTH = 0.0007  # m
+COMPACT_RATIO = 1.6
+COMPACT_RATIO_WIDTH = 0.05
+
+
+def round_resemblance(edge_rise: float, footprint) -> float:
+    """The resemblance in [0, 1] of an object whose height map rises `edge_rise` m inside its edge and
+    whose footprint spans `footprint` (m, its two horizontal sides); NaN when either is not finite."""
+    footprint = np.asarray(footprint, float)
+    if not (math.isfinite(edge_rise) and np.all(np.isfinite(footprint))) or np.min(footprint) <= 0.0:
+        return math.nan
+    ratio = float(np.max(footprint) / np.min(footprint))
+    return (1.0 - step_down(float(edge_rise), ROUND_RISE, ROUND_RISE_WIDTH)) * step_down(ratio, COMPACT_RATIO,
+                                                                                         COMPACT_RATIO_WIDTH)
+
+
+def table_top_roundness(estimate) -> float:
+    """`round_resemblance` of a table-top estimate (`table_top.TableTopEstimate`): its edge rise and its
+    spans along its footprint's sides."""
+    return round_resemblance(float(getattr(estimate, "edge_rise", math.nan)),
+                             np.asarray(estimate.extents_sides, float)[:2])
