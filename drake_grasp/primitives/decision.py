@@ -19,15 +19,16 @@ known table), so it decides first:
 
    a. where it picks the box and the round resemblance (`primitives.round_sides`, from the table-top
       estimate) is at least `ROUND_THRESHOLD` (1/2: sides that curve away below the top, on a compact
-      footprint), the **sphere** instead: the box resemblance saturates on every irregular solid, and
-      three fingers round a ring or a blob hold it where two against one slip (docs/design.md §5.4j).
-      A sphere already used up (`exclude`) leaves the box;
-   b. where the sphere is chosen (by the argmax or by a.) and the low resemblance (`primitives.low`)
-      is at least `LOW_THRESHOLD` (1/2: standing lower than the fingers' sweep, 10.4 cm, and narrow
-      enough for the flower grasp to land round it), **flat** instead: the spherical grasp's rounded
-      fingertips meet such an object below its equator and pop it out, and the flower grasp, landed
-      on the table round it, holds it (docs/design.md §5.4i). A flat grasp already used up leaves the
-      sphere;
+      footprint), the **sphere** instead, unless the object is low (b.): the box resemblance saturates
+      on every irregular solid, and three fingers round a ring or a blob hold it where two against one
+      slip (docs/design.md §5.4j). A sphere already used up (`exclude`) leaves the box;
+   b. where the argmax picks the sphere and the low resemblance (`primitives.low`) is at least
+      `LOW_THRESHOLD` (1/2: standing lower than the fingers' sweep, 10.4 cm, and narrow enough for the
+      flower grasp to land round it), **flat** instead: the spherical grasp's rounded fingertips meet
+      such an object below its equator and pop it out, and the flower grasp, landed on the table round
+      it, holds it (docs/design.md §5.4i). A flat grasp already used up leaves the sphere. A low round
+      object the box leads keeps the box: the flower grasp held such objects no more often than the box
+      grasp (§5.4j);
 4. with the funnel search (`funnel.search`, a scenario's `perception.grasp_search`): a grasp whose
    funnel on the shape the camera saw is empty (ε = 0 at every pose scored) is not chosen when another's
    is not; the most resembling of those with a funnel is (`choose_with_funnels`). The paper's argmax
@@ -83,11 +84,12 @@ def choose_shape(resemblances: dict, exclude=()) -> str | None:
 def _refined(shape: str, resemblances: dict, exclude=()) -> str:
     """The argmax's `shape` refined by the measured shapes (step 3): a round object's box is the sphere
     (3a), a low object's sphere the flat choice (3b); a choice in `exclude` is not made."""
-    round_ = _value(resemblances, ROUND)
-    if shape == "box" and "sphere" not in exclude and math.isfinite(round_) and round_ >= ROUND_THRESHOLD:
-        shape = "sphere"
-    low = _value(resemblances, LOW)
-    if shape == "sphere" and FLAT not in exclude and math.isfinite(low) and low >= LOW_THRESHOLD:
+    round_, low = _value(resemblances, ROUND), _value(resemblances, LOW)
+    is_low = math.isfinite(low) and low >= LOW_THRESHOLD
+    if shape == "box" and "sphere" not in exclude and math.isfinite(round_) and round_ >= ROUND_THRESHOLD \
+            and not is_low:
+        return "sphere"
+    if shape == "sphere" and FLAT not in exclude and is_low:
         return FLAT
     return shape
 
@@ -114,13 +116,12 @@ def decision_margin(resemblances: dict) -> float:
         if upright >= UPRIGHT_THRESHOLD:
             return bound
     leader = max((s for s in SHAPES if s in resemblances), key=lambda s: _value(resemblances, s))
-    round_ = _value(resemblances, ROUND)
-    if math.isfinite(round_) and leader == "box":
+    low, round_ = _value(resemblances, LOW), _value(resemblances, ROUND)
+    if leader == "box" and math.isfinite(round_):  # step 3a: roundness decides, and lowness if round
         bound = min(bound, 2.0 * abs(round_ - ROUND_THRESHOLD))
-        if round_ >= ROUND_THRESHOLD:
-            leader = "sphere"
-    low = _value(resemblances, LOW)
-    if math.isfinite(low) and leader == "sphere":
+        if round_ >= ROUND_THRESHOLD and math.isfinite(low):
+            bound = min(bound, 2.0 * abs(low - LOW_THRESHOLD))
+    if leader == "sphere" and math.isfinite(low):  # step 3b
         bound = min(bound, 2.0 * abs(low - LOW_THRESHOLD))
     return min(lead, bound)
 

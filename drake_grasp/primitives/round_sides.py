@@ -4,8 +4,9 @@ The paper's silhouettes cannot tell a ball-like solid from a box: the box resemb
 the silhouette's area changes under the camera's arcs, and saturates on every irregular solid (the
 novel generator's blobs and rings, scans, the PyBullet random objects; docs/results/flower.md). So the
 box grasp is chosen for them, and it closes two fingers against one across a solid whose sides curve
-away: on the dev seeds' rings and blobs it held 12 of 24 trials from the camera, the spherical grasp,
-three fingers round it, 16 (docs/design.md §5.4j).
+away: on the development seeds' blobs taller than the fingers' sweep and rings wider than the flower
+grasp lands round, it held 8 of 18 trials from the camera, the spherical grasp, three fingers round
+them, 13 (docs/design.md §5.4j).
 
 What tells them apart is a measured shape, from the table-top height map (as for the flat, upright and
 low resemblances):
@@ -13,7 +14,7 @@ low resemblances):
 * **round sides**: the map's *edge rise* (`table_top.edge_rise`), how much it rises within 6 mm inside
   the footprint's edge. Seen from above, a vertical side ends in a level top (0-1 mm on the everyday
   generator's boxes, mugs and polycubes, and on real mugs, cups and bowls); a round side curves up from
-  the edge (5-29 mm on round solids, rings, blobs and scans 3-24 cm tall). A logistic step up, 1/2 at
+  the edge (5-29 mm on round solids, rings, blobs and scans 3-24 cm across). A logistic step up, 1/2 at
   `ROUND_RISE` (4 mm), width `ROUND_RISE_WIDTH`;
 * **a compact footprint**: its longer side at most `COMPACT_RATIO` (1.6) times its shorter (a ring or a
   ball 1, a lumpy blob up to about 1.5); a banana or a screwdriver lying down has round sides too, and
