@@ -198,6 +198,7 @@ def test_a_missed_plate_is_seen_missed_and_tried_again(short_scenario, tmp_path)
     record = run_compliant_attempts(scenario, resolve_user_object(str(path)), seed=1, attempts=2)
     first, second = record.attempts
     assert first["grasp"] == "precision" and not first["success"] and first["sensed_held"] is False
+    assert first["resemblance"]["flat"] >= 0.5  # each attempt keeps what its own look measured
     assert second["grasp"] == "precision"
     assert record.grasp == second["grasp"] and record.success == second["success"]
     assert not first_attempt_success(record)

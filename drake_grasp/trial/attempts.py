@@ -38,10 +38,11 @@ from drake_grasp.trial.record import TrialRecord
 
 
 def attempt_summary(record: TrialRecord) -> dict:
-    """One attempt as the combined record lists it."""
+    """One attempt as the combined record lists it, with the resemblances its own look measured (the
+    combined record's top level keeps the last look's): why each attempt chose its grasp."""
     return {"grasp": record.grasp, "chosen": record.chosen_grasp, "success": record.success,
             "failure": record.failure, "detail": record.detail, "sensed_held": record.sensed.get("held"),
-            "sensed": dict(record.sensed),
+            "sensed": dict(record.sensed), "resemblance": dict(record.resemblances or {}),
             "sim_time": record.sim_time, "wall_time": record.wall_time}
 
 
