@@ -51,9 +51,7 @@ def main() -> int:
     seeds = [int(s) for s in args.seeds.split(",")]
     scenarios = args.scenarios.split(",")
     if args.classes and not args.files:  # checked before any work starts
-        from drake_grasp.objects import everyday, novel, round as round_objects
-
-        known = {"novel": novel, "everyday": everyday, "round": round_objects}[args.objects].CLASSES
+        known = _generator(args.objects).CLASSES
         keep = {c.strip() for c in args.classes.split(",") if c.strip()}
         if not keep or keep - set(known):
             print(f"holding_study: error: --classes: choose from {', '.join(known)}", file=sys.stderr)
@@ -68,10 +66,9 @@ def main() -> int:
     elif args.objects == "novel":
         objects = ensure_objects(out / "objects", args.count, args.seed)
     else:
-        from drake_grasp.objects import everyday, round as round_objects
         from drake_grasp.sweeps.results import ensure_generated
 
-        generator = everyday if args.objects == "everyday" else round_objects
+        generator = _generator(args.objects)
         objects = ensure_generated(out / "objects", lambda staging: generator.generate(args.count, args.seed, staging),
                                    args.count, (args.seed,))
     if args.classes:
@@ -141,6 +138,13 @@ def main() -> int:
     if args.report:
         write_atomically(pathlib.Path(args.report), text)
     return 0
+
+
+def _generator(name: str):
+    """The generator module of `--objects NAME`."""
+    from drake_grasp.objects import everyday, novel, round as round_objects
+
+    return {"novel": novel, "everyday": everyday, "round": round_objects}[name]
 
 
 def read_files_list(path: pathlib.Path) -> list[dict]:

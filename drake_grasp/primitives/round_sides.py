@@ -50,5 +50,4 @@ def round_resemblance(edge_rise: float, footprint) -> float:
 def table_top_roundness(estimate) -> float:
     """`round_resemblance` of a table-top estimate (`table_top.TableTopEstimate`): its edge rise and its
     spans along its footprint's sides."""
-    return round_resemblance(float(getattr(estimate, "edge_rise", math.nan)),
-                             np.asarray(estimate.extents_sides, float)[:2])
+    return round_resemblance(float(estimate.edge_rise), np.asarray(estimate.extents_sides, float)[:2])
