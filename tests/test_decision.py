@@ -120,8 +120,16 @@ def test_a_round_object_takes_the_spherical_grasp_where_the_box_leads():
     assert choose_shape(res) == "sphere"
     assert choose_shape({**res, "round": box}) == "box" and choose_shape({**res, "round": banana}) == "box"
     # A low round object that the flower grasp lands round keeps the box (the flower grasp held such
-    # objects no more often); where the sphere leads, the flower grasp as before.
-    assert choose_shape({**res, "low": narrow}) == "box"
+    # objects no more often), unless it is squat, a ring or a puck under 5.5 cm: the flower grasp; where
+    # the sphere leads, the flower grasp as before.
+    from drake_grasp.primitives.low import squat_resemblance
+    blob, puck = squat_resemblance(0.08, [0.10, 0.10]), squat_resemblance(0.035, [0.12, 0.12])
+    assert blob < 0.01 and puck > 0.99 and squat_resemblance(0.035, [0.23, 0.23]) < 0.01
+    assert choose_shape({**res, "low": narrow}) == "box" and choose_shape({**res, "low": narrow, "squat": blob}) == "box"
+    assert choose_shape({**res, "low": narrow, "squat": puck}) == "flat"
+    assert choose_shape({**res, "low": narrow, "squat": puck}, exclude=("flat",)) == "box"
+    assert choose_shape({**res, "low": narrow, "squat": puck, "round": box}) == "box"
+    assert decision_margin({**res, "low": narrow, "squat": 0.8}) == pytest.approx(0.6)
     assert choose_shape({**res, "low": narrow, "sphere": 0.99}) == "flat"
     # The spherical grasp used up (or its funnel empty): the box again.
     assert choose_shape(res, exclude=("sphere",)) == "box"

@@ -21,14 +21,15 @@ known table), so it decides first:
       estimate) is at least `ROUND_THRESHOLD` (1/2: sides that curve away below the top, on a compact
       footprint), the **sphere** instead, unless the object is low (b.): the box resemblance saturates
       on every irregular solid, and three fingers round a ring or a blob hold it where two against one
-      slip (docs/design.md §5.4j). A sphere already used up (`exclude`) leaves the box;
+      slip (docs/design.md §5.4j). A sphere already used up (`exclude`) leaves the box. A low round
+      object (b.) keeps the box, unless it is also squat (`primitives.low.squat_resemblance`: lower than
+      5.5 cm, a ring or a puck): then **flat**, the flower grasp, whose landed fingertips meet its round
+      side at or above its widest line (§5.4k); a flat grasp already used up leaves the box;
    b. where the argmax picks the sphere and the low resemblance (`primitives.low`) is at least
       `LOW_THRESHOLD` (1/2: standing lower than the fingers' sweep, 10.4 cm, and narrow enough for the
       flower grasp to land round it), **flat** instead: the spherical grasp's rounded fingertips meet
       such an object below its equator and pop it out, and the flower grasp, landed on the table round
-      it, holds it (docs/design.md §5.4i). A flat grasp already used up leaves the sphere. A low round
-      object the box leads keeps the box: the flower grasp held such objects no more often than the box
-      grasp (§5.4j);
+      it, holds it (docs/design.md §5.4i). A flat grasp already used up leaves the sphere;
 4. with the funnel search (`funnel.search`, a scenario's `perception.grasp_search`): a grasp whose
    funnel on the shape the camera saw is empty (ε = 0 at every pose scored) is not chosen when another's
    is not; the most resembling of those with a funnel is (`choose_with_funnels`). The paper's argmax
@@ -51,11 +52,13 @@ FLAT = "flat"
 UPRIGHT = "upright"
 LOW = "low"  # not a choice: it turns the sphere's choice into the flat one (step 3b)
 ROUND = "round"  # not a choice: it turns the box's choice into the sphere's (step 3a)
+SQUAT = "squat"  # not a choice: it turns a low round object's box into the flat choice (step 3a)
 CHOICES = SHAPES + (FLAT, UPRIGHT)
 FLAT_THRESHOLD = 0.5
 UPRIGHT_THRESHOLD = 0.5
 LOW_THRESHOLD = 0.5
 ROUND_THRESHOLD = 0.5
+SQUAT_THRESHOLD = 0.5
 
 
 def _value(resemblances: dict, shape: str) -> float:
@@ -82,13 +85,17 @@ def choose_shape(resemblances: dict, exclude=()) -> str | None:
 
 
 def _refined(shape: str, resemblances: dict, exclude=()) -> str:
-    """The argmax's `shape` refined by the measured shapes (step 3): a round object's box is the sphere
-    (3a), a low object's sphere the flat choice (3b); a choice in `exclude` is not made."""
-    round_, low = _value(resemblances, ROUND), _value(resemblances, LOW)
+    """The argmax's `shape` refined by the measured shapes (step 3): a round object's box is the sphere,
+    or the flat choice if it is low and squat (3a), a low object's sphere the flat choice (3b); a choice
+    in `exclude` is not made."""
+    round_, low, squat = _value(resemblances, ROUND), _value(resemblances, LOW), _value(resemblances, SQUAT)
     is_low = math.isfinite(low) and low >= LOW_THRESHOLD
-    if shape == "box" and "sphere" not in exclude and math.isfinite(round_) and round_ >= ROUND_THRESHOLD \
-            and not is_low:
+    is_round = math.isfinite(round_) and round_ >= ROUND_THRESHOLD
+    if shape == "box" and is_round and not is_low and "sphere" not in exclude:
         return "sphere"
+    if shape == "box" and is_round and is_low and FLAT not in exclude and math.isfinite(squat) \
+            and squat >= SQUAT_THRESHOLD:
+        return FLAT
     if shape == "sphere" and FLAT not in exclude and is_low:
         return FLAT
     return shape
@@ -117,10 +124,13 @@ def decision_margin(resemblances: dict) -> float:
             return bound
     leader = max((s for s in SHAPES if s in resemblances), key=lambda s: _value(resemblances, s))
     low, round_ = _value(resemblances, LOW), _value(resemblances, ROUND)
-    if leader == "box" and math.isfinite(round_):  # step 3a: roundness decides, and lowness if round
+    squat = _value(resemblances, SQUAT)
+    if leader == "box" and math.isfinite(round_):  # step 3a: roundness decides, lowness if round, then squatness
         bound = min(bound, 2.0 * abs(round_ - ROUND_THRESHOLD))
         if round_ >= ROUND_THRESHOLD and math.isfinite(low):
             bound = min(bound, 2.0 * abs(low - LOW_THRESHOLD))
+            if low >= LOW_THRESHOLD and math.isfinite(squat):
+                bound = min(bound, 2.0 * abs(squat - SQUAT_THRESHOLD))
     if leader == "sphere" and math.isfinite(low):  # step 3b
         bound = min(bound, 2.0 * abs(low - LOW_THRESHOLD))
     return min(lead, bound)

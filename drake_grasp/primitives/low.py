@@ -49,6 +49,32 @@ def low_resemblance(height: float, footprint=None) -> float:
     return low
 
 
+# The squat resemblance (docs/design.md §5.4k): a round object lower than this, that the box leads, takes
+# the flower grasp. Its landed fingertips (radius 11.5 mm) close on a round side from the table up, so
+# they meet it at or above its widest line when that line is low: on rings 2.7-5.1 cm tall and 10-15 cm
+# across the flower grasp held 13 of 14 trials, the box grasp 13 of 22; on round solids 6.2-10 cm tall
+# (low blobs, PyBullet's duck) it held no more than the box grasp. The middle between them is a choice.
+SQUAT_HEIGHT = 0.055  # m
+SQUAT_HEIGHT_WIDTH = 0.003  # m
+
+
+def squat_resemblance(height: float, footprint=None) -> float:
+    """The resemblance in [0, 1] of an object `height` m tall, with `footprint` as `low_resemblance`'s, to
+    one the flower grasp's landed fingertips meet at or above its widest line (`SQUAT_HEIGHT`), and
+    can land round (`FLOWER_MAX_WIDTH`); NaN when the height is not finite."""
+    if not math.isfinite(height):
+        return math.nan
+    squat = step_down(float(height), SQUAT_HEIGHT, SQUAT_HEIGHT_WIDTH)
+    if footprint is not None and np.all(np.isfinite(np.asarray(footprint, float))):
+        squat *= step_down(float(np.min(footprint)), FLOWER_MAX_WIDTH, FLOWER_MAX_WIDTH_WIDTH)
+    return squat
+
+
+def table_top_squatness(estimate) -> float:
+    """`squat_resemblance` of a table-top estimate (`table_top.TableTopEstimate`)."""
+    return squat_resemblance(float(estimate.height), np.asarray(estimate.extents_sides, float)[:2])
+
+
 def table_top_lowness(estimate) -> float:
     """`low_resemblance` of a table-top estimate (`table_top.TableTopEstimate`): its height above the
     table and its spans along its footprint's sides."""
