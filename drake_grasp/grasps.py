@@ -383,7 +383,8 @@ def precision_grasp(estimate: ObjectEstimate) -> GraspPlan:
     of the compliant arm (module docstring).
 
     The palm faces down above the object's centre, its fingers closing across the shorter horizontal
-    side, F3 to the right of the arm's reach (`flower_facing.thumb_to_the_right`; where the camera saw
+    side (on a near-square footprint, `PINCH_SQUARE`, across the arm's reach: F1 and F2 on one side of
+    the reach, F3 on the other; docs/design.md §5.4k), F3 to the right of the arm's reach (`flower_facing.thumb_to_the_right`; where the camera saw
     the footprint, `funnel.planning` may turn it so that F1 and F2 meet its fuller side). The fingers
     are preshaped to `flower_landing_angle`, and the palm's target puts their deepest point
     `FLOWER_SINK` below the table, whatever the object's height: the guarded approach ends when the
@@ -395,7 +396,7 @@ def precision_grasp(estimate: ObjectEstimate) -> GraspPlan:
     flower.
     """
     R = np.asarray(estimate.R_WB, float)
-    _, long_axis, _ = _top_face_axes(R, np.asarray(estimate.size, float))
+    _, long_axis, short_axis = _top_face_axes(R, np.asarray(estimate.size, float))
     pinch_axis = flower_pinch_axis(estimate)
     if pinch_axis is not None:
         R_WP = _palm_rotation(_DOWN, R[:, pinch_axis])  # F1 and F2 close along x_P
@@ -403,7 +404,12 @@ def precision_grasp(estimate: ObjectEstimate) -> GraspPlan:
         angle = flower_landing_angle(estimate.half_extent_along(R_WP.col(0)), spread, (1, 2), PINCH_PRESHAPE_RANGE)
         preshape = (angle, angle, 0.0) + (angle * hand.DISTAL_PER_PROXIMAL,) * 2 + (0.0,)
     else:
-        R_WP = _palm_rotation(_DOWN, R[:, long_axis])  # fingers close along the short side
+        closing_side = long_axis  # x_P along it: the fingers close across the shorter side
+        size = np.asarray(estimate.size, float)
+        if size[long_axis] <= PINCH_SQUARE * size[short_axis]:  # near-square: across the reach
+            reach = np.asarray(estimate.center, float)[:2] - ARM_BASE_XY
+            closing_side = max((long_axis, short_axis), key=lambda i: abs(float(R[:2, i] @ reach)))
+        R_WP = _palm_rotation(_DOWN, R[:, closing_side])
         spread, thumb_closes = ComplianceMode.CYLINDRICAL.spread, True
         angle = flower_landing_angle(estimate.half_extent_along(R_WP.col(1)), spread)
         preshape = (angle,) * 3 + (angle * hand.DISTAL_PER_PROXIMAL,) * 3

@@ -86,6 +86,25 @@ def test_the_flower_grasp_puts_f3_to_the_right_whatever_sign_the_estimate_s_axis
     assert _thumb(plan.X_WP_target.rotation()) @ np.array([0.0, -1.0]) > 0.95
 
 
+@pytest.mark.parametrize("yaw_deg", [0.0, 40.0, 90.0, 130.0])
+def test_the_flower_grasp_closes_across_the_reach_on_a_near_square_footprint(yaw_deg):
+    # A 7 cm ring seen by the camera: its footprint's axes are any pair; whichever the estimate calls
+    # its longer side, F3 goes to the right of the reach, F1 and F2 to the left (the fingers close
+    # across the reach, not along it).
+    yaw = math.radians(yaw_deg)
+    a = np.array([math.cos(yaw), math.sin(yaw), 0.0])
+    R_WB = np.column_stack([a, np.cross([0.0, 0.0, 1.0], a), [0.0, 0.0, 1.0]])
+    for size in ([0.071, 0.070, 0.021], [0.070, 0.071, 0.021]):
+        estimate = ObjectEstimate(center=np.array([0.55, 0.0, 0.0105]), R_WB=R_WB, size=np.array(size), table_z=0.0)
+        plan = precision_grasp(estimate)
+        assert plan.thumb_closes
+        assert _thumb(plan.X_WP_target.rotation()) @ np.array([0.0, -1.0]) > math.cos(math.radians(46.0))
+    # An elongated footprint still closes across its shorter side, wherever it points.
+    estimate = ObjectEstimate(center=np.array([0.55, 0.0, 0.005]), R_WB=R_WB, size=np.array([0.10, 0.05, 0.01]),
+                              table_z=0.0)
+    assert abs(np.array(precision_grasp(estimate).X_WP_target.rotation().col(0)) @ a) > 0.99
+
+
 @pytest.mark.parametrize("axis_sign", [1.0, -1.0])
 @pytest.mark.parametrize("size", [(0.022, 0.022, 0.022), (0.12, 0.012, 0.012)])
 def test_the_pinch_leaves_the_open_f3_to_the_right_too(axis_sign, size):
