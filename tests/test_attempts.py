@@ -9,7 +9,8 @@ from pydrake.math import RigidTransform, RollPitchYaw
 from drake_grasp.primitives.decision import choose_shape
 from drake_grasp.station import ObjectPlacement, object_rest_pose
 from drake_grasp.primitives.camera_model import CameraIntrinsics
-from drake_grasp.trial.sensing import (LIFTED_FRACTION, depth_change, in_hand_depth, in_hand_shift, sense_hold,
+from drake_grasp.trial.sensing import (LIFTED_FRACTION, depth_change, in_hand_depth, in_hand_shift, in_hand_turn,
+                                       sense_hold,
                                       too_near_share)
 from drake_grasp.trial.spec import TrialSpec
 
@@ -105,6 +106,49 @@ def test_an_object_that_slid_across_the_view_is_not_held():
     assert not sensed.held and sensed.moved == pytest.approx(0.0153, abs=0.002)
     assert sense_hold(risen, top, lift, hold_depths=(start, still), intrinsics=intrinsics).held
     assert sense_hold(risen, top, lift, hold_depths=(start, slid)).held  # without the intrinsics: axis only
+
+
+def _box_depth(intrinsics: CameraIntrinsics, centre, R, half, hidden=None) -> np.ndarray:
+    """The in-hand depth image (`in_hand_depth`) of a box of half-extents `half` (m) at `centre`, turned
+    by `R` (camera frame), ray-cast (slabs); `hidden`: pixels a finger covers."""
+    v, u = np.mgrid[0:intrinsics.height, 0:intrinsics.width]
+    rays = np.stack([(u - intrinsics.cx) / intrinsics.fx, (v - intrinsics.cy) / intrinsics.fy, np.ones(u.shape)], -1)
+    origin, direction = -np.asarray(R).T @ np.asarray(centre, float), rays @ np.asarray(R)  # in the box's frame
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t1, t2 = (-np.asarray(half) - origin) / direction, (np.asarray(half) - origin) / direction
+    near, far = np.minimum(t1, t2).max(axis=-1), np.maximum(t1, t2).min(axis=-1)
+    hit = (near <= far) & (near > 0)
+    depth = np.where(hit, near, np.inf)  # the rays' z is 1: their parameter is the depth
+    mask = hit if hidden is None else hit & ~hidden
+    return in_hand_depth(depth, mask)
+
+
+def test_an_object_that_turned_in_the_hand_is_not_held():
+    # A 7 x 5 x 3 cm box 15 cm in front of the camera turns 15 deg in the hand (about the view's axis, or
+    # about an axis across it) and moves 3 mm: the shift of its points stays under the obvious slip, the
+    # turn does not. The finger's shadow moving over a box that stays put is no turn.
+    from pydrake.math import RotationMatrix
+
+    intrinsics = CameraIntrinsics.from_fov_y(160, 120, 1.0)
+    finger = np.zeros((120, 160), bool)
+    finger[:, 70:78] = True
+    half, centre = [0.035, 0.025, 0.015], np.array([0.0, 0.0, 0.15])
+    tilt = RotationMatrix.MakeXRotation(0.3).matrix()  # a face and a side in view
+    start = _box_depth(intrinsics, centre, tilt, half, finger)
+    still = _box_depth(intrinsics, centre, tilt, half, np.roll(finger, 12, axis=1))
+    assert in_hand_turn(start, still, intrinsics) < 2.0
+    top, lift = 0.05, 0.10
+    risen = np.column_stack([np.zeros(50), np.zeros(50), np.linspace(0.10, 0.16, 50)])
+    for turn in (RotationMatrix.MakeZRotation(math.radians(15.0)), RotationMatrix.MakeYRotation(math.radians(15.0))):
+        turned = _box_depth(intrinsics, centre + [0.003, 0.0, 0.0], turn.matrix() @ tilt, half, finger)
+        assert in_hand_turn(start, turned, intrinsics) == pytest.approx(15.0, abs=2.0)
+        sensed = sense_hold(risen, top, lift, hold_depths=(start, turned), intrinsics=intrinsics)
+        assert sensed.moved < 0.01 and not sensed.held and sensed.turned == pytest.approx(15.0, abs=2.0)
+    assert sense_hold(risen, top, lift, hold_depths=(start, still), intrinsics=intrinsics).held
+    # A ball turning about its centre shows nothing to see: no turn is invented.
+    ball = _ball_depth(intrinsics, [0.0, 0.0, 0.15], 0.03, finger)
+    assert in_hand_turn(ball, _ball_depth(intrinsics, [0.0, 0.0, 0.15], 0.03, np.roll(finger, 15, axis=1)),
+                        intrinsics) < 2.0
 
 
 def test_a_tall_object_left_on_the_table_is_not_held_though_its_sides_stand_high():

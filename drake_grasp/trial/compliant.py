@@ -115,7 +115,7 @@ def _compliant_record(trial: Assembled, scenario: Scenario) -> TrialRecord:
             lifted = None if run.depth_at_lift is None else (run.depth_at_lift, run.depth_at_end)
             record.sensed = sense_hold(run.seen_points, top, lift_height, seen.table_height, in_hand,
                                        slip_distance, lifted, CameraIntrinsics.from_camera_config(scenario.camera),
-                                       run.too_near).to_dict()
+                                       run.too_near, scenario.protocol.slip_angle_deg).to_dict()
         if estimate.found and run.X_WO_decision is not None:
             errors = compare(estimate, ground_truth(spec, run.X_WO_decision))
             record.estimate_errors = {
