@@ -55,6 +55,10 @@ fitted (`in_hand_shift`: a trimmed ICP, translation only; the closest 70 % of th
 so what only one image sees is left out). That ring measured 20.6 mm. Against the true slip on 19 trials
 of novel and everyday objects (docs/design.md §5.4h): within 1.4 mm on 17, from 0.2 to 101 mm; under
 it on a bottle that slid 9.7 mm along its own axis, a surface that slides within itself (1.8 mm).
+The success test also fails a turn of 10° in the hand, which can move the points little: a polycube
+that turned 16° moved 6 mm (everyday seed 7919). So the rigid motion between the two point sets is
+fitted too (`fit_motion`, `in_hand_turn`), and a turn of `slip_angle_deg` or more is not held
+(docs/design.md §5.4h).
 
 It is evaluated once per attempt on the final state, so an attempt that missed still runs its lift
 and hold (simulated seconds, not wall minutes) before the next attempt.
