@@ -110,6 +110,13 @@ PINCH_SLENDER = 4.0  # the footprint's long side at least this many times its sh
 PINCH_LENGTH_RANGE = (0.08, 0.16)  # m: the long side (the longest tried: 14 cm; the tips reach 20 cm)
 PINCH_MIN_END_HEIGHT = 0.010  # m
 PINCH_MAX_STICK_WIDTH = 0.015  # m
+# The three-finger flower grasp closes across the footprint's shorter side. On a footprint whose sides
+# are within this ratio the camera cannot tell which side is shorter (a ring or a round blob reads 1-5 %
+# apart), and it closes across the arm's reach instead (docs/design.md §5.4k: small rings 2/10 held
+# with the estimate's longer side, 5/10 across the reach). Not wider: at 1.25 (the pinch's square), a
+# blob 11.1 × 9.4 cm (1.18) closed across its longer side and was missed 3/3, where across its shorter
+# side it had been held 3/3 (novel seed 8111): the longer side takes more of the preshape's reach.
+FLOWER_SQUARE = 1.1
 # Approaches within this angle of the vertical are "from above" for the table clearance.
 _FROM_ABOVE = math.radians(45.0)
 _DOWN = np.array([0.0, 0.0, -1.0])
@@ -383,7 +390,7 @@ def precision_grasp(estimate: ObjectEstimate) -> GraspPlan:
     of the compliant arm (module docstring).
 
     The palm faces down above the object's centre, its fingers closing across the shorter horizontal
-    side (on a near-square footprint, `PINCH_SQUARE`, across the arm's reach: F1 and F2 on one side of
+    side (on a square footprint, `FLOWER_SQUARE`, across the arm's reach: F1 and F2 on one side of
     the reach, F3 on the other; docs/design.md §5.4k), F3 to the right of the arm's reach (`flower_facing.thumb_to_the_right`; where the camera saw
     the footprint, `funnel.planning` may turn it so that F1 and F2 meet its fuller side). The fingers
     are preshaped to `flower_landing_angle`, and the palm's target puts their deepest point
@@ -406,7 +413,7 @@ def precision_grasp(estimate: ObjectEstimate) -> GraspPlan:
     else:
         closing_side = long_axis  # x_P along it: the fingers close across the shorter side
         size = np.asarray(estimate.size, float)
-        if size[long_axis] <= PINCH_SQUARE * size[short_axis]:  # near-square: across the reach
+        if size[long_axis] <= FLOWER_SQUARE * size[short_axis]:  # square: across the reach
             reach = np.asarray(estimate.center, float)[:2] - ARM_BASE_XY
             closing_side = max((long_axis, short_axis), key=lambda i: abs(float(R[:2, i] @ reach)))
         R_WP = _palm_rotation(_DOWN, R[:, closing_side])
