@@ -111,11 +111,10 @@ PINCH_LENGTH_RANGE = (0.08, 0.16)  # m: the long side (the longest tried: 14 cm;
 PINCH_MIN_END_HEIGHT = 0.010  # m
 PINCH_MAX_STICK_WIDTH = 0.015  # m
 # The three-finger flower grasp closes across the footprint's shorter side. On a footprint whose sides
-# are within this ratio the camera cannot tell which side is shorter (a ring or a round blob reads 1-5 %
-# apart), and it closes across the arm's reach instead (docs/design.md §5.4k: small rings 2/10 held
-# with the estimate's longer side, 5/10 across the reach). Not wider: at 1.25 (the pinch's square), a
-# blob 11.1 × 9.4 cm (1.18) closed across its longer side and was missed 3/3, where across its shorter
-# side it had been held 3/3 (novel seed 8111): the longer side takes more of the preshape's reach.
+# are within this ratio the camera cannot tell which side is shorter (a ring's or a round blob's reads
+# 1-6 % apart), and it closes across the arm's reach instead (docs/design.md §5.4k: small rings 2/10
+# held with the estimate's longer side, 5/10 across the reach). Beyond it the shorter side is measured,
+# and closing across it is §5.4f's rule (a first version used the pinch's 1.25).
 FLOWER_SQUARE = 1.1
 # Approaches within this angle of the vertical are "from above" for the table clearance.
 _FROM_ABOVE = math.radians(45.0)
