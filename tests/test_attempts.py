@@ -72,11 +72,16 @@ def test_an_object_that_slid_in_the_hand_over_the_hold_is_not_held():
     assert sense_hold(risen, top, lift, hold_depths=(start, in_hand_depth(np.full((40, 40), 0.077), ~mask_start))).held
 
 
+def _rays(intrinsics: CameraIntrinsics) -> np.ndarray:
+    """Each pixel's ray (H × W × 3) in the camera frame, its z 1."""
+    v, u = np.mgrid[0:intrinsics.height, 0:intrinsics.width]
+    return np.stack([(u - intrinsics.cx) / intrinsics.fx, (v - intrinsics.cy) / intrinsics.fy, np.ones(u.shape)], -1)
+
+
 def _ball_depth(intrinsics: CameraIntrinsics, centre, radius: float, hidden=None) -> np.ndarray:
     """The in-hand depth image (`in_hand_depth`) of a ball at `centre` (camera frame, m), ray-cast;
     `hidden`: pixels a finger covers."""
-    v, u = np.mgrid[0:intrinsics.height, 0:intrinsics.width]
-    rays = np.stack([(u - intrinsics.cx) / intrinsics.fx, (v - intrinsics.cy) / intrinsics.fy, np.ones(u.shape)], -1)
+    rays = _rays(intrinsics)
     rays /= np.linalg.norm(rays, axis=-1, keepdims=True)
     c = np.asarray(centre, float)
     along = rays @ c
@@ -87,32 +92,39 @@ def _ball_depth(intrinsics: CameraIntrinsics, centre, radius: float, hidden=None
     return in_hand_depth(depth, mask)
 
 
+def _camera_with_finger(columns: slice):
+    """A 160 x 120 camera and a finger hiding those columns of its image."""
+    finger = np.zeros((120, 160), bool)
+    finger[:, columns] = True
+    return CameraIntrinsics.from_fov_y(160, 120, 1.0), finger
+
+
+# The object's points after the lift (world z from 10 to 16 cm) and its top before it (5 cm), lift 10 cm.
+RISEN = np.column_stack([np.zeros(50), np.zeros(50), np.linspace(0.10, 0.16, 50)])
+TOP, LIFT = 0.05, 0.10
+
+
 def test_an_object_that_slid_across_the_view_is_not_held():
     # A 6 cm ball 15 cm in front of the camera slides 15 mm across its view and 3 mm along it: the
     # pixel-by-pixel depth change sees little of that, the shift of its points sees all of it. A finger
     # hides a strip of the image, so the two images see different parts of the ball.
-    intrinsics = CameraIntrinsics.from_fov_y(160, 120, 1.0)
-    finger = np.zeros((120, 160), bool)
-    finger[:, 70:80] = True
+    intrinsics, finger = _camera_with_finger(slice(70, 80))
     start = _ball_depth(intrinsics, [0.0, 0.0, 0.15], 0.03, finger)
     slid = _ball_depth(intrinsics, [0.015, 0.0, 0.153], 0.03, finger)
     still = _ball_depth(intrinsics, [0.0, 0.0, 0.15], 0.03, np.roll(finger, 15, axis=1))
     assert abs(depth_change(start, slid)) < 0.01  # along the axis alone, it passes for held
     assert in_hand_shift(start, slid, intrinsics) == pytest.approx(math.hypot(0.015, 0.003), abs=0.002)
     assert in_hand_shift(start, still, intrinsics) < 0.001  # the finger's shadow moved, the ball did not
-    top, lift = 0.05, 0.10
-    risen = np.column_stack([np.zeros(50), np.zeros(50), np.linspace(0.10, 0.16, 50)])
-    sensed = sense_hold(risen, top, lift, hold_depths=(start, slid), intrinsics=intrinsics)
+    sensed = sense_hold(RISEN, TOP, LIFT, hold_depths=(start, slid), intrinsics=intrinsics)
     assert not sensed.held and sensed.moved == pytest.approx(0.0153, abs=0.002)
-    assert sense_hold(risen, top, lift, hold_depths=(start, still), intrinsics=intrinsics).held
-    assert sense_hold(risen, top, lift, hold_depths=(start, slid)).held  # without the intrinsics: axis only
+    assert sense_hold(RISEN, TOP, LIFT, hold_depths=(start, still), intrinsics=intrinsics).held
+    assert sense_hold(RISEN, TOP, LIFT, hold_depths=(start, slid)).held  # without the intrinsics: axis only
 
 
 def _box_depth(intrinsics: CameraIntrinsics, centre, R, half, hidden=None) -> np.ndarray:
     """The in-hand depth image (`in_hand_depth`) of a box of half-extents `half` (m) at `centre`, turned
     by `R` (camera frame), ray-cast (slabs); `hidden`: pixels a finger covers."""
-    v, u = np.mgrid[0:intrinsics.height, 0:intrinsics.width]
-    rays = np.stack([(u - intrinsics.cx) / intrinsics.fx, (v - intrinsics.cy) / intrinsics.fy, np.ones(u.shape)], -1)
+    rays = _rays(intrinsics)
     origin, direction = -np.asarray(R).T @ np.asarray(centre, float), rays @ np.asarray(R)  # in the box's frame
     with np.errstate(divide="ignore", invalid="ignore"):
         t1, t2 = (-np.asarray(half) - origin) / direction, (np.asarray(half) - origin) / direction
@@ -129,22 +141,18 @@ def test_an_object_that_turned_in_the_hand_is_not_held():
     # turn does not. The finger's shadow moving over a box that stays put is no turn.
     from pydrake.math import RotationMatrix
 
-    intrinsics = CameraIntrinsics.from_fov_y(160, 120, 1.0)
-    finger = np.zeros((120, 160), bool)
-    finger[:, 70:78] = True
+    intrinsics, finger = _camera_with_finger(slice(70, 78))
     half, centre = [0.035, 0.025, 0.015], np.array([0.0, 0.0, 0.15])
     tilt = RotationMatrix.MakeXRotation(0.3).matrix()  # a face and a side in view
     start = _box_depth(intrinsics, centre, tilt, half, finger)
     still = _box_depth(intrinsics, centre, tilt, half, np.roll(finger, 12, axis=1))
     assert in_hand_turn(start, still, intrinsics) < 2.0
-    top, lift = 0.05, 0.10
-    risen = np.column_stack([np.zeros(50), np.zeros(50), np.linspace(0.10, 0.16, 50)])
     for turn in (RotationMatrix.MakeZRotation(math.radians(15.0)), RotationMatrix.MakeYRotation(math.radians(15.0))):
         turned = _box_depth(intrinsics, centre + [0.003, 0.0, 0.0], turn.matrix() @ tilt, half, finger)
         assert in_hand_turn(start, turned, intrinsics) == pytest.approx(15.0, abs=2.0)
-        sensed = sense_hold(risen, top, lift, hold_depths=(start, turned), intrinsics=intrinsics)
+        sensed = sense_hold(RISEN, TOP, LIFT, hold_depths=(start, turned), intrinsics=intrinsics)
         assert sensed.moved < 0.01 and not sensed.held and sensed.turned == pytest.approx(15.0, abs=2.0)
-    assert sense_hold(risen, top, lift, hold_depths=(start, still), intrinsics=intrinsics).held
+    assert sense_hold(RISEN, TOP, LIFT, hold_depths=(start, still), intrinsics=intrinsics).held
     # A ball turning about its centre shows nothing to see: no turn is invented.
     ball = _ball_depth(intrinsics, [0.0, 0.0, 0.15], 0.03, finger)
     assert in_hand_turn(ball, _ball_depth(intrinsics, [0.0, 0.0, 0.15], 0.03, np.roll(finger, 15, axis=1)),

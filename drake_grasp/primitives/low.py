@@ -37,23 +37,31 @@ FLOWER_MAX_WIDTH = 2.0 * (hand.fingertip_reach(FLOWER_PRESHAPE_RANGE[0], hand.Co
 FLOWER_MAX_WIDTH_WIDTH = 0.005  # m
 
 
+def _lower_than(height: float, middle: float, width: float, footprint) -> float:
+    """A logistic step down in `height` (1/2 at `middle`, m), times one in the footprint's shorter side at
+    `FLOWER_MAX_WIDTH` (the flower grasp must land round it) where `footprint` is known; NaN when the
+    height is not finite."""
+    if not math.isfinite(height):
+        return math.nan
+    step = step_down(float(height), middle, width)
+    if footprint is not None and np.all(np.isfinite(np.asarray(footprint, float))):
+        step *= step_down(float(np.min(footprint)), FLOWER_MAX_WIDTH, FLOWER_MAX_WIDTH_WIDTH)
+    return step
+
+
 def low_resemblance(height: float, footprint=None) -> float:
     """The resemblance in [0, 1] of an object standing `height` m above the table whose footprint spans
     `footprint` (m, its two horizontal sides; None: not known, no width limit); NaN when the height is
     not finite."""
-    if not math.isfinite(height):
-        return math.nan
-    low = step_down(float(height), LOW_HEIGHT, LOW_WIDTH)
-    if footprint is not None and np.all(np.isfinite(np.asarray(footprint, float))):
-        low *= step_down(float(np.min(footprint)), FLOWER_MAX_WIDTH, FLOWER_MAX_WIDTH_WIDTH)
-    return low
+    return _lower_than(height, LOW_HEIGHT, LOW_WIDTH, footprint)
 
 
 # The squat resemblance (docs/design.md §5.4k): a round object lower than this, that the box leads, takes
 # the flower grasp. Its landed fingertips (radius 11.5 mm) close on a round side from the table up, so
-# they meet it at or above its widest line when that line is low: on rings 2.7-5.1 cm tall and 10-15 cm
-# across the flower grasp held 13 of 14 trials, the box grasp 13 of 22; on round solids 6.2-10 cm tall
-# (low blobs, PyBullet's duck) it held no more than the box grasp. The middle between them is a choice.
+# they meet it at or above its widest line when that line is low: on the development seeds' rings
+# 2.7-5.1 cm tall and 7.8-15.1 cm across the flower grasp held 11 of 14 trials, the box grasp 19 of 29;
+# on round solids 6.2-10 cm tall (low blobs, PyBullet's duck) it held no more than the box grasp. The
+# middle between them is a choice.
 SQUAT_HEIGHT = 0.055  # m
 SQUAT_HEIGHT_WIDTH = 0.003  # m
 
@@ -62,12 +70,7 @@ def squat_resemblance(height: float, footprint=None) -> float:
     """The resemblance in [0, 1] of an object `height` m tall, with `footprint` as `low_resemblance`'s, to
     one the flower grasp's landed fingertips meet at or above its widest line (`SQUAT_HEIGHT`), and
     can land round (`FLOWER_MAX_WIDTH`); NaN when the height is not finite."""
-    if not math.isfinite(height):
-        return math.nan
-    squat = step_down(float(height), SQUAT_HEIGHT, SQUAT_HEIGHT_WIDTH)
-    if footprint is not None and np.all(np.isfinite(np.asarray(footprint, float))):
-        squat *= step_down(float(np.min(footprint)), FLOWER_MAX_WIDTH, FLOWER_MAX_WIDTH_WIDTH)
-    return squat
+    return _lower_than(height, SQUAT_HEIGHT, SQUAT_HEIGHT_WIDTH, footprint)
 
 
 def table_top_squatness(estimate) -> float:
