@@ -390,8 +390,9 @@ def precision_grasp(estimate: ObjectEstimate) -> GraspPlan:
 
     The palm faces down above the object's centre, its fingers closing across the shorter horizontal
     side (on a square footprint, `FLOWER_SQUARE`, across the arm's reach: F1 and F2 on one side of
-    the reach, F3 on the other; docs/design.md §5.4k), F3 to the right of the arm's reach (`flower_facing.thumb_to_the_right`; where the camera saw
-    the footprint, `funnel.planning` may turn it so that F1 and F2 meet its fuller side). The fingers
+    the reach, F3 on the other; docs/design.md §5.4k), F3 to the right of the arm's reach
+    (`flower_facing.thumb_to_the_right`; where the camera saw the footprint, `funnel.planning` may turn
+    it so that F1 and F2 meet its fuller side). The fingers
     are preshaped to `flower_landing_angle`, and the palm's target puts their deepest point
     `FLOWER_SINK` below the table, whatever the object's height: the guarded approach ends when the
     tips touch the table (or the object's top, if it is wider than the hand opens).
@@ -401,8 +402,8 @@ def precision_grasp(estimate: ObjectEstimate) -> GraspPlan:
     close on it; F3 stays open (its preshape 0), to the right of the arm's reach as in the three-finger
     flower.
     """
-    R = np.asarray(estimate.R_WB, float)
-    _, long_axis, short_axis = _top_face_axes(R, np.asarray(estimate.size, float))
+    R, size = np.asarray(estimate.R_WB, float), np.asarray(estimate.size, float)
+    _, long_axis, short_axis = _top_face_axes(R, size)
     pinch_axis = flower_pinch_axis(estimate)
     if pinch_axis is not None:
         R_WP = _palm_rotation(_DOWN, R[:, pinch_axis])  # F1 and F2 close along x_P
@@ -411,7 +412,6 @@ def precision_grasp(estimate: ObjectEstimate) -> GraspPlan:
         preshape = (angle, angle, 0.0) + (angle * hand.DISTAL_PER_PROXIMAL,) * 2 + (0.0,)
     else:
         closing_side = long_axis  # x_P along it: the fingers close across the shorter side
-        size = np.asarray(estimate.size, float)
         if size[long_axis] <= FLOWER_SQUARE * size[short_axis]:  # square: across the reach
             reach = np.asarray(estimate.center, float)[:2] - ARM_BASE_XY
             closing_side = max((long_axis, short_axis), key=lambda i: abs(float(R[:2, i] @ reach)))

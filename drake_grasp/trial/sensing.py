@@ -222,14 +222,11 @@ def in_hand_shift(start: np.ndarray, end: np.ndarray, intrinsics: CameraIntrinsi
     either image sees fewer than `min_pixels` of its points). `depth_change` sees motion along the
     camera's axis only: a ring that slid 25 mm mostly across the view changed its depth by 6.4 mm, and
     was taken for held, where this reads 20.6 mm (novel seed 2718)."""
-    p_start, p_end = in_hand_points(start, intrinsics), in_hand_points(end, intrinsics)
-    if min(len(p_start), len(p_end)) < min_pixels:
-        return float("nan")
-    return float(np.linalg.norm(fit_shift(p_start, p_end)))
+    return in_hand_motion(start, end, intrinsics, min_pixels)[0]
 
 
 def fit_motion(start: np.ndarray, end: np.ndarray, kept: float = SHIFT_KEPT,
-               iterations: int = SHIFT_ITERATIONS) -> tuple[np.ndarray, np.ndarray]:
+               iterations: int = SHIFT_ITERATIONS, shift: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
     """The rigid motion (R 3 × 3, t 3) that carries point set `start` onto `end` (m, one frame): a
     trimmed ICP as `fit_shift`'s, with the rotation fitted too (Kabsch on the closest `kept` fraction
     of the pairs).
@@ -241,7 +238,8 @@ def fit_motion(start: np.ndarray, end: np.ndarray, kept: float = SHIFT_KEPT,
     pairs match a face's inside whatever its turn). A turn that does not bring that residual under
     `TURN_EVIDENCE` times the shift's alone is not evidenced and is not reported: a ball turning about
     its centre shows nothing to fit, and its fit drifts 9° on the shadow of a finger. So the fit can
-    miss a turn, as the shift can miss a slip, but not invent one."""
+    miss a turn, as the shift can miss a slip, but not invent one. `shift`: `fit_shift`'s translation
+    between the two sets, where the caller has it already."""
     start, end = np.asarray(start, float), np.asarray(end, float)
     tree = cKDTree(end)
     n_kept = max(3, int(kept * len(start)))
@@ -266,7 +264,8 @@ def fit_motion(start: np.ndarray, end: np.ndarray, kept: float = SHIFT_KEPT,
                 break
         return R, t
 
-    shift = fit_shift(start, end, kept, iterations)
+    if shift is None:
+        shift = fit_shift(start, end, kept, iterations)
     fits = [fit(np.eye(3), shift)]
     c_start, c_end = start.mean(axis=0), end.mean(axis=0)
     for degrees in TURN_STARTS:
@@ -284,6 +283,17 @@ def turn_angle(R: np.ndarray) -> float:
     return float(np.degrees(np.arccos(np.clip((np.trace(R) - 1.0) / 2.0, -1.0, 1.0))))
 
 
+def in_hand_motion(start: np.ndarray, end: np.ndarray, intrinsics: CameraIntrinsics,
+                   min_pixels: int = MIN_COMMON_PIXELS) -> tuple[float, float]:
+    """(moved m, turned degrees): `in_hand_shift` and `in_hand_turn` from one back-projection of the two
+    images and one shift fit (NaN, NaN when either image sees fewer than `min_pixels` of its points)."""
+    p_start, p_end = in_hand_points(start, intrinsics), in_hand_points(end, intrinsics)
+    if min(len(p_start), len(p_end)) < min_pixels:
+        return float("nan"), float("nan")
+    shift = fit_shift(p_start, p_end)
+    return float(np.linalg.norm(shift)), turn_angle(fit_motion(p_start, p_end, shift=shift)[0])
+
+
 def in_hand_turn(start: np.ndarray, end: np.ndarray, intrinsics: CameraIntrinsics,
                  min_pixels: int = MIN_COMMON_PIXELS) -> float:
     """How far the object turned in the hand between two of its in-hand depth images (`in_hand_depth`),
@@ -291,10 +301,7 @@ def in_hand_turn(start: np.ndarray, end: np.ndarray, intrinsics: CameraIntrinsic
     image sees fewer than `min_pixels` of its points). A turn moves the points near the turn's axis
     little: a 7 cm polycube that turned 17° in the hand moved 6 mm, under the obvious slip's 1 cm
     (everyday seed 7919)."""
-    p_start, p_end = in_hand_points(start, intrinsics), in_hand_points(end, intrinsics)
-    if min(len(p_start), len(p_end)) < min_pixels:
-        return float("nan")
-    return turn_angle(fit_motion(p_start, p_end)[0])
+    return in_hand_motion(start, end, intrinsics, min_pixels)[1]
 
 
 def sense_hold(points_W: np.ndarray, top_before: float, lift_height: float,
@@ -326,14 +333,10 @@ def sense_hold(points_W: np.ndarray, top_before: float, lift_height: float,
     if hold_depths is not None:
         slid = depth_change(*hold_depths)
         held = held and not abs(slid) >= slip_distance
-    moved = float("nan")
+    moved = turned = float("nan")
     if hold_depths is not None and intrinsics is not None:
-        moved = in_hand_shift(*hold_depths, intrinsics)
-        held = held and not moved >= slip_distance
-    turned = float("nan")
-    if hold_depths is not None and intrinsics is not None:
-        turned = in_hand_turn(*hold_depths, intrinsics)
-        held = held and not turned >= slip_angle_deg
+        moved, turned = in_hand_motion(*hold_depths, intrinsics)
+        held = held and not moved >= slip_distance and not turned >= slip_angle_deg
     rose_short = float("nan")
     if lift_depths is not None:
         rose_short = depth_change(*lift_depths)
