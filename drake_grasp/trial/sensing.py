@@ -87,6 +87,12 @@ SHIFT_ITERATIONS = 30  # at most, from each start (the fit stops when a step is 
 TURN_STARTS = (-30.0, -15.0, 15.0, 30.0)  # degrees about the view's axis: `fit_motion`'s further starts
 TURN_RESIDUAL_KEPT = 0.95  # the fraction of closest pairs whose residual tells `fit_motion`'s fits apart
 TURN_EVIDENCE = 0.6  # a turn counts when it leaves at most this share of the shift's residual
+# ... and when it explains at least this much of it (m²: a mean squared misfit of (1 mm)²). Below it the
+# shift has already matched the points as closely as the pixels sample the surface: a held mug, round
+# but for its handle, left 0.8 mm² after the shift, and a turn of 13.4° about its axis "explained" 0.43
+# mm² of it (it turned 0.4°). A box turned 15° in the view's plane leaves 5.0 mm² to the shift and
+# 1.8 to the turn; a polycube that turned 16.6° in the hand 18.3 and 1.2 (docs/design.md §5.4h).
+TURN_MIN_EXPLAINED = 1e-6
 SLIP_ANGLE_DEG = 10.0  # the success test's obvious turn in the hand (the scenario's protocol.slip_angle_deg)
 
 
@@ -236,8 +242,10 @@ def fit_motion(start: np.ndarray, end: np.ndarray, kept: float = SHIFT_KEPT,
     translation and from turns of `TURN_STARTS` about the view's axis; the one that leaves the
     smallest residual over the closest `TURN_RESIDUAL_KEPT` of its pairs wins (the fit's own trimmed
     pairs match a face's inside whatever its turn). A turn that does not bring that residual under
-    `TURN_EVIDENCE` times the shift's alone is not evidenced and is not reported: a ball turning about
-    its centre shows nothing to fit, and its fit drifts 9° on the shadow of a finger. So the fit can
+    `TURN_EVIDENCE` times the shift's alone, or that explains less than `TURN_MIN_EXPLAINED` of it,
+    is not evidenced and is not reported: a ball turning about its centre shows nothing to fit, and its
+    fit drifts 9° on the shadow of a finger; a round object's turn about its own axis shows only in
+    how the pixels sample its surface, and in the few points of a handle. So the fit can
     miss a turn, as the shift can miss a slip, but not invent one. `shift`: `fit_shift`'s translation
     between the two sets, where the caller has it already."""
     start, end = np.asarray(start, float), np.asarray(end, float)
@@ -273,7 +281,8 @@ def fit_motion(start: np.ndarray, end: np.ndarray, kept: float = SHIFT_KEPT,
         R0 = np.array([[math.cos(a), -math.sin(a), 0.0], [math.sin(a), math.cos(a), 0.0], [0.0, 0.0, 1.0]])
         fits.append(fit(R0, c_end - R0 @ c_start))
     R, t = min(fits, key=lambda f: residual(*f))
-    if residual(R, t) >= TURN_EVIDENCE * residual(np.eye(3), shift):
+    left, by_shift = residual(R, t), residual(np.eye(3), shift)
+    if left >= TURN_EVIDENCE * by_shift or by_shift - left < TURN_MIN_EXPLAINED:
         return np.eye(3), shift
     return R, t
 
