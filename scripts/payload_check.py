@@ -25,6 +25,7 @@ import numpy as np
 import trimesh
 
 from drake_grasp.sweeps.stats import wilson_interval
+from drake_grasp.objects.generated import one_link_urdf
 from drake_grasp.sweeps.runner import TrialSpec, run_trials
 
 # (name, what it is, its compliant grasp, mesh maker). Sizes in metres; each stands on the table as made.
@@ -40,16 +41,9 @@ SHAPES = (
     ("low_blob", "an ellipsoid 11 x 10 x 6 cm", "precision",
      lambda: trimesh.creation.icosphere(subdivisions=3, radius=1.0).apply_scale((0.055, 0.05, 0.03))),
 )
-URDF = """<?xml version="1.0"?>
-<robot name="{name}">
-  <link name="{name}">
-    <inertial><origin xyz="0 0 0"/><mass value="{mass:.6g}"/>
-      <inertia ixx="{I[0][0]:.6g}" ixy="{I[0][1]:.6g}" ixz="{I[0][2]:.6g}" iyy="{I[1][1]:.6g}" iyz="{I[1][2]:.6g}" izz="{I[2][2]:.6g}"/></inertial>
-    <visual><geometry><mesh filename="{mesh}"/></geometry></visual>
-    <collision><geometry><mesh filename="{mesh}"/></geometry></collision>
-  </link>
-</robot>
-"""
+INERTIAL = ('<inertial><origin xyz="0 0 0"/><mass value="{mass:.6g}"/><inertia ixx="{I[0][0]:.6g}" '
+            'ixy="{I[0][1]:.6g}" ixz="{I[0][2]:.6g}" iyy="{I[1][1]:.6g}" iyz="{I[1][2]:.6g}" izz="{I[2][2]:.6g}"/>'
+            '</inertial>')
 
 
 def write_objects(folder: pathlib.Path, masses: list[float]) -> list[tuple[str, float, str, pathlib.Path]]:
@@ -66,7 +60,7 @@ def write_objects(folder: pathlib.Path, masses: list[float]) -> list[tuple[str, 
             inertia = np.asarray(mesh.moment_inertia) * mass / mesh.volume  # trimesh: unit density
             label = f"{name}_{round(mass * 1000):04d}g"
             path = folder / f"{label}.urdf"
-            path.write_text(URDF.format(name=label, mass=mass, I=inertia, mesh=mesh_file.name))
+            path.write_text(one_link_urdf(label, mesh_file.name, INERTIAL.format(mass=mass, I=inertia)))
             made.append((name, mass, grasp, path))
     return made
 
@@ -96,7 +90,7 @@ def main(argv: list[str] | None = None) -> int:
     rows = run_trials(specs, out / "trials.csv", workers=args.workers, label="payload")
     by_object = {}
     for row in rows:
-        by_object.setdefault(pathlib.Path(row["object"]).stem if "/" in row["object"] else row["object"], []).append(row)
+        by_object.setdefault(pathlib.Path(row["object"]).stem, []).append(row)
     lines = [f"Each shape's own compliant grasp from its true pose, trial seeds {args.seeds}: held / trials "
              "(failures).", "", "| shape | grasp | " + " | ".join(f"{m:g} kg" for m in masses) + " |",
              "|---|---|" + "---|" * len(masses)]

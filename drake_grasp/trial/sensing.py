@@ -228,7 +228,8 @@ def in_hand_shift(start: np.ndarray, end: np.ndarray, intrinsics: CameraIntrinsi
     either image sees fewer than `min_pixels` of its points). `depth_change` sees motion along the
     camera's axis only: a ring that slid 25 mm mostly across the view changed its depth by 6.4 mm, and
     was taken for held, where this reads 20.6 mm (novel seed 2718)."""
-    return in_hand_motion(start, end, intrinsics, min_pixels)[0]
+    points = _in_hand_point_sets(start, end, intrinsics, min_pixels)
+    return float("nan") if points is None else float(np.linalg.norm(fit_shift(*points)))
 
 
 def fit_motion(start: np.ndarray, end: np.ndarray, kept: float = SHIFT_KEPT,
@@ -296,11 +297,19 @@ def in_hand_motion(start: np.ndarray, end: np.ndarray, intrinsics: CameraIntrins
                    min_pixels: int = MIN_COMMON_PIXELS) -> tuple[float, float]:
     """(moved m, turned degrees): `in_hand_shift` and `in_hand_turn` from one back-projection of the two
     images and one shift fit (NaN, NaN when either image sees fewer than `min_pixels` of its points)."""
-    p_start, p_end = in_hand_points(start, intrinsics), in_hand_points(end, intrinsics)
-    if min(len(p_start), len(p_end)) < min_pixels:
+    points = _in_hand_point_sets(start, end, intrinsics, min_pixels)
+    if points is None:
         return float("nan"), float("nan")
-    shift = fit_shift(p_start, p_end)
-    return float(np.linalg.norm(shift)), turn_angle(fit_motion(p_start, p_end, shift=shift)[0])
+    shift = fit_shift(*points)
+    return float(np.linalg.norm(shift)), turn_angle(fit_motion(*points, shift=shift)[0])
+
+
+def _in_hand_point_sets(start: np.ndarray, end: np.ndarray, intrinsics: CameraIntrinsics,
+                        min_pixels: int) -> tuple[np.ndarray, np.ndarray] | None:
+    """The two in-hand depth images' points (`in_hand_points`), or None when either has fewer than
+    `min_pixels`."""
+    p_start, p_end = in_hand_points(start, intrinsics), in_hand_points(end, intrinsics)
+    return None if min(len(p_start), len(p_end)) < min_pixels else (p_start, p_end)
 
 
 def in_hand_turn(start: np.ndarray, end: np.ndarray, intrinsics: CameraIntrinsics,
