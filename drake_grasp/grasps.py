@@ -129,6 +129,17 @@ ARM_BASE_XY = np.zeros(2)
 # three seeds: 45° at 0.6-0.7 held the two of ordinary mass 6/6 each; 0.5 missed a 23 cm one.
 UPRIGHT_APPROACH_DIP = math.radians(45.0)
 UPRIGHT_AIM_HEIGHT = 0.65
+# The upright wrap's palm stops this far short of the object's near side, along the approach. Driven
+# into contact with the palm, a 5.5-7.5 cm bottle meets the proximal links so close to the palm that the
+# distal links close to their 48° limit before they touch its far side: their stall torque presses on
+# the limit, the object is held by position alone and turns 10-16° in the hand whatever its mass
+# (docs/results/payload.md). Standing off, the proximal links meet it further out and the distal links
+# press its far side at 15-35°, under the motor's torque. Measured from the true pose, nine standing
+# cylinders 4.5-9 cm across, 13-23 cm tall and 0.2-1 kg, trial seeds 1-2: in contact 3 of 6 held (seed
+# 1); 5 or 6 cm short, 18/18 each; 7.5-9 cm short the wider ones are barely reached (dropped or
+# missed). The approach starts as far out as before (`GraspPlan.approach_distance` shortened by it), so
+# the pre-grasp keeps its reach (a pre-grasp further back was out of the WAM's reach at 4 of 9).
+UPRIGHT_STANDOFF = 0.055
 
 
 class GraspType(enum.Enum):
@@ -276,17 +287,22 @@ def _from_the_arm(center: np.ndarray) -> np.ndarray:
     return np.array([d[0], d[1], 0.0])
 
 
-def _upright_cylindrical_pose(estimate: ObjectEstimate) -> tuple[RotationMatrix, np.ndarray]:
-    """(R_WP, palm target) of the cylindrical grasp of an upright object: the palm comes from the arm's
-    side, `UPRIGHT_APPROACH_DIP` below the level, towards the axis at `UPRIGHT_AIM_HEIGHT` of the
-    object's height; its x axis (the fingers' spread line) leans the same way from the vertical, so
-    the fingers close around the axis."""
+def _upright_cylindrical_grasp(estimate: ObjectEstimate) -> GraspPlan:
+    """The cylindrical grasp of an upright object: the palm comes from the arm's side,
+    `UPRIGHT_APPROACH_DIP` below the level, towards the axis at `UPRIGHT_AIM_HEIGHT` of the object's
+    height, and stops `UPRIGHT_STANDOFF` short of its near side (the half-width along the level
+    direction, measured along the approach); its x axis (the fingers' spread line) leans the same way
+    from the vertical, so the fingers close around the axis. The approach is shortened by the standoff,
+    so that it starts where an approach to the near side would."""
     level = _from_the_arm(estimate.center)
     approach = math.cos(UPRIGHT_APPROACH_DIP) * level + math.sin(UPRIGHT_APPROACH_DIP) * _DOWN
     R_WP = _palm_rotation(approach, np.array([0.0, 0.0, 1.0]))
     height = 2.0 * (float(np.asarray(estimate.center)[2]) - estimate.table_height)
     aim = np.array([estimate.center[0], estimate.center[1], estimate.table_height + UPRIGHT_AIM_HEIGHT * height])
-    return R_WP, aim - estimate.half_extent_along(level) * approach
+    target = aim - (estimate.half_extent_along(level) + UPRIGHT_STANDOFF) * approach
+    approach_distance = GraspPlan.approach_distance - UPRIGHT_STANDOFF
+    return GraspPlan(GraspType.CYLINDRICAL, ComplianceMode.CYLINDRICAL.spread, RigidTransform(R_WP, target),
+                     approach_distance=approach_distance)
 
 
 def spherical_grasp(estimate: ObjectEstimate) -> GraspPlan:
@@ -309,9 +325,8 @@ def cylindrical_grasp(estimate: ObjectEstimate) -> GraspPlan:
     # The approach direction perpendicular to the axis that points down the most.
     approach = _DOWN - np.dot(_DOWN, axis) * axis
     spread = ComplianceMode.CYLINDRICAL.spread
-    if np.linalg.norm(approach) < 1e-6:  # an upright axis: from the arm's side (`_upright_cylindrical_pose`)
-        R_WP, target = _upright_cylindrical_pose(estimate)
-        return GraspPlan(GraspType.CYLINDRICAL, spread, RigidTransform(R_WP, target))
+    if np.linalg.norm(approach) < 1e-6:  # an upright axis: from the arm's side
+        return _upright_cylindrical_grasp(estimate)
     approach = approach / np.linalg.norm(approach)
     R_WP = _palm_rotation(approach, axis)
     target = np.asarray(estimate.center) - estimate.half_extent_along(approach) * approach

@@ -61,10 +61,13 @@ def test_cylindrical_grasp_of_a_standing_cylinder_comes_from_the_arm_s_side_dipp
     dip = grasps.UPRIGHT_APPROACH_DIP
     np.testing.assert_allclose(R.col(2), [0, math.cos(dip), -math.sin(dip)], atol=1e-12)  # outward and down
     np.testing.assert_allclose(R.col(0), [0, math.sin(dip), math.cos(dip)], atol=1e-12)  # spread line: up the axis
-    # The approach line runs through the axis at UPRIGHT_AIM_HEIGHT of the height, the palm 5 cm back
-    # (the half-width along the level direction) from it along the approach.
+    # The approach line runs through the axis at UPRIGHT_AIM_HEIGHT of the height; the palm stops
+    # UPRIGHT_STANDOFF short of the near side (5 cm from the axis along the level direction, measured
+    # along the approach), and the approach starts where one to the near side would.
     aim = np.array([0.0, 0.5, grasps.UPRIGHT_AIM_HEIGHT * 0.3])
-    np.testing.assert_allclose(p, aim - 0.05 * R.col(2), atol=1e-12)
+    np.testing.assert_allclose(p, aim - (0.05 + grasps.UPRIGHT_STANDOFF) * R.col(2), atol=1e-12)
+    np.testing.assert_allclose(plan.X_WP_pregrasp.translation(), aim - (0.05 + 0.12) * R.col(2), atol=1e-12)
+    assert grasps.UPRIGHT_STANDOFF > 0.0
 
 
 def test_box_grasp_stands_off_a_face_wider_than_the_knuckles():
