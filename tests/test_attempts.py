@@ -152,6 +152,9 @@ def test_an_object_that_turned_in_the_hand_is_not_held():
         assert in_hand_turn(start, turned, intrinsics) == pytest.approx(15.0, abs=2.0)
         sensed = sense_hold(RISEN, TOP, LIFT, hold_depths=(start, turned), intrinsics=intrinsics)
         assert sensed.moved < 0.01 and not sensed.held and sensed.turned == pytest.approx(15.0, abs=2.0)
+        # Pressed into the view (most of it too near to range), the turn is recorded, not held against it.
+        pressed = sense_hold(RISEN, TOP, LIFT, hold_depths=(start, turned), intrinsics=intrinsics, too_near=0.8)
+        assert pressed.held and pressed.turned == pytest.approx(15.0, abs=2.0)
     assert sense_hold(RISEN, TOP, LIFT, hold_depths=(start, still), intrinsics=intrinsics).held
     # A ball turning about its centre shows nothing to see: no turn is invented.
     ball = _ball_depth(intrinsics, [0.0, 0.0, 0.15], 0.03, finger)
