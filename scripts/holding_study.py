@@ -74,15 +74,19 @@ def main() -> int:
     if args.classes:
         keep = {c.strip() for c in args.classes.split(",") if c.strip()}
         objects = [o for o in objects if o["class"] in keep]
-    from drake_grasp.objects import ObjectError
-    from drake_grasp.objects.names import resolve_user_object
+    from drake_grasp.objects.names import load_error
 
-    for o in objects:  # every object loads before any trial starts: one line and exit 2 if not
-        try:
-            resolve_user_object(str(o["file"]), scale=o.get("scale", 1.0))
-        except ObjectError as error:
-            print(f"holding_study: error: {error}", file=sys.stderr)
-            return 2
+    # Every object loads before any trial starts (one line and exit 2 if not), checked on the workers:
+    # a new mesh's convex decomposition takes up to minutes, and the trials find it cached.
+    checked = {}
+    for index, error in LocalExecutor(args.workers).imap_unordered(
+            load_error, [(str(o["file"]), o.get("scale", 1.0)) for o in objects]):
+        checked[index] = error
+        print(f"holding: checked {len(checked)}/{len(objects)} object files", flush=True)
+    first_error = next((checked[i] for i in range(len(objects)) if checked[i]), None)
+    if first_error:
+        print(f"holding_study: error: {first_error}", file=sys.stderr)
+        return 2
     specs = [TrialSpec(str(o["file"]), "compliant", "", s, scenario_name=n, attempts=args.attempts,
                        scale=o.get("scale", 1.0))
              for n in scenarios for o in objects for s in seeds]

@@ -8,10 +8,10 @@ ROOT = pathlib.Path(__file__).resolve().parents[1]
 SHEET = "v 0 0 0\nv 0.05 0 0\nv 0 0.05 0\nv 0 0 0.05\nf 1 2 3\nf 1 2 4\n"  # two triangles: no solid
 
 
-def _study(out, *extra):
+def _study(out, *extra, workers=1):
     return subprocess.run([sys.executable, str(ROOT / "scripts" / "holding_study.py"), "--objects", "novel",
                            "--count", "7", "--seed", "0", "--seeds", "1", "--attempts", "1",
-                           "--scenarios", "funnel", "--workers", "1", "--out", str(out), *extra],
+                           "--scenarios", "funnel", "--workers", str(workers), "--out", str(out), *extra],
                           capture_output=True, text=True, timeout=300)
 
 
@@ -54,4 +54,17 @@ def test_a_files_list_is_loaded_before_any_trial(tmp_path):
     done = _study(tmp_path / "out", "--files", str(tmp_path / "objects.tsv"))
     assert done.returncode == 2
     assert done.stderr.strip().count("\n") == 0 and "sheet.obj" in done.stderr
+    assert not (tmp_path / "out" / "trials.csv").exists()
+
+
+def test_the_files_are_checked_on_the_workers_and_the_first_bad_one_is_named(tmp_path):
+    """With two workers the files load in a process pool before any trial; the one line names the
+    first file of the list that does not load, whichever worker finished first."""
+    (tmp_path / "sheet_a.obj").write_text(SHEET)
+    (tmp_path / "sheet_b.obj").write_text(SHEET)
+    listed = tmp_path / "objects.tsv"
+    listed.write_text("box\tsheet_a.obj\nbox\tsheet_b.obj\n")
+    done = _study(tmp_path / "out", "--files", str(listed), workers=2)
+    assert done.returncode == 2, done.stderr
+    assert done.stderr.strip().count("\n") == 0 and "sheet_a.obj" in done.stderr and "sheet_b" not in done.stderr
     assert not (tmp_path / "out" / "trials.csv").exists()

@@ -7,6 +7,7 @@ from __future__ import annotations
 import math
 import os
 import re
+import warnings
 from pathlib import Path
 
 from drake_grasp.objects.catalogue import (
@@ -158,3 +159,18 @@ def _object_from_file(path: Path, label: str, kw: dict) -> ObjectSpec:
             return model_files.object_from_sdf(path, **kw)
         return model_files.object_from_mjcf(path, **kw)
     return object_from_mesh(path, **kw)
+
+
+def load_error(name_or_path: str, scale: float = 1.0) -> str | None:
+    """The one line saying why `name_or_path` does not load as a user's object
+    (:func:`resolve_user_object` at `scale`), or None if it loads. A plain function of its arguments, so
+    that a study can check all its files in a process pool before any trial starts (a new mesh's
+    convex decomposition takes seconds to minutes, and is cached for the trials). The loader's notes
+    and warnings are held back: the trials give them again, and a refusal stays one line."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        try:
+            resolve_user_object(name_or_path, scale=scale)
+        except ObjectError as error:
+            return str(error)
+    return None
