@@ -25,7 +25,7 @@ import numpy as np
 import trimesh
 
 from drake_grasp.sweeps.stats import wilson_interval
-from drake_grasp.objects.generated import one_link_urdf
+from drake_grasp.objects.round import urdf_text
 from drake_grasp.sweeps.runner import TrialSpec, run_trials
 
 # (name, what it is, its compliant grasp, mesh maker). Sizes in metres; each stands on the table as made.
@@ -41,9 +41,6 @@ SHAPES = (
     ("low_blob", "an ellipsoid 11 x 10 x 6 cm", "precision",
      lambda: trimesh.creation.icosphere(subdivisions=3, radius=1.0).apply_scale((0.055, 0.05, 0.03))),
 )
-INERTIAL = ('<inertial><origin xyz="0 0 0"/><mass value="{mass:.6g}"/><inertia ixx="{I[0][0]:.6g}" '
-            'ixy="{I[0][1]:.6g}" ixz="{I[0][2]:.6g}" iyy="{I[1][1]:.6g}" iyz="{I[1][2]:.6g}" izz="{I[2][2]:.6g}"/>'
-            '</inertial>')
 
 
 def write_objects(folder: pathlib.Path, masses: list[float]) -> list[tuple[str, float, str, pathlib.Path]]:
@@ -57,10 +54,9 @@ def write_objects(folder: pathlib.Path, masses: list[float]) -> list[tuple[str, 
         mesh_file = folder / f"{name}.obj"
         mesh.export(mesh_file)
         for mass in masses:
-            inertia = np.asarray(mesh.moment_inertia) * mass / mesh.volume  # trimesh: unit density
             label = f"{name}_{round(mass * 1000):04d}g"
             path = folder / f"{label}.urdf"
-            path.write_text(one_link_urdf(label, mesh_file.name, INERTIAL.format(mass=mass, I=inertia)))
+            path.write_text(urdf_text(label, mesh_file.name, mesh, mass))  # the mesh's inertia at `mass`
             made.append((name, mass, grasp, path))
     return made
 
