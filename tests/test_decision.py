@@ -139,3 +139,25 @@ def test_a_round_object_takes_the_spherical_grasp_where_the_box_leads():
     # The margin: the box's lead (0.9), bounded by the round resemblance's distance from its threshold.
     near = {**res, "round": 0.7}
     assert choose_shape(near) == "sphere" and decision_margin(near) == pytest.approx(0.4)
+
+
+def test_a_thin_round_sided_object_takes_the_flower_grasp_where_the_box_remains():
+    from drake_grasp.primitives.round_sides import thin_round_resemblance
+
+    bar = thin_round_resemblance(0.028, 0.008, [0.12, 0.05])  # a 2.8 cm bar with round sides
+    brick = thin_round_resemblance(0.028, 0.0005, [0.12, 0.05])  # vertical sides, a level top
+    banana = thin_round_resemblance(0.0365, 0.012, [0.19, 0.05])  # the paper's banana, as read: taller
+    wide = thin_round_resemblance(0.028, 0.008, [0.25, 0.22])  # wider than the flower grasp lands round
+    assert bar > 0.75 and brick < 0.01 and banana < 0.2 and wide < 0.01
+    assert math.isnan(thin_round_resemblance(math.nan, 0.008, [0.1, 0.05]))
+    res = {"sphere": 0.05, "cylinder": 0.01, "box": 0.95, "flat": 0.3, "upright": 0.0, "low": 1.0,
+           "round": 0.0, "squat": 1.0}
+    assert choose_shape({**res, "thin_round": bar}) == "flat"
+    assert choose_shape({**res, "thin_round": brick}) == "box" and choose_shape({**res, "thin_round": banana}) == "box"
+    # The flower grasp used up: the box again; the paper's cylinder lead is left alone.
+    assert choose_shape({**res, "thin_round": bar}, exclude=("flat",)) == "box"
+    assert choose_shape({**res, "cylinder": 0.99, "thin_round": bar}) == "cylinder"
+    # Without the resemblance (the paper's perception, or records before it): the argmax.
+    assert choose_shape(res) == "box"
+    # The margin: the box's lead (0.9), bounded by the rule's own distance from its threshold.
+    assert decision_margin({**res, "flat": 0.1, "thin_round": 0.6}) == pytest.approx(0.2)

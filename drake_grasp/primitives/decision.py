@@ -30,6 +30,11 @@ known table), so it decides first:
       flower grasp to land round it), **flat** instead: the spherical grasp's rounded fingertips meet
       such an object below its equator and pop it out, and the flower grasp, landed on the table round
       it, holds it (docs/design.md §5.4i). A flat grasp already used up leaves the sphere;
+   c. where the box remains and the thin-round resemblance (`primitives.round_sides`: lower than 3.2 cm,
+      round-sided, whatever its footprint, and narrow enough for the flower grasp to land round it) is
+      at least `THIN_ROUND_THRESHOLD` (1/2), **flat**: the box grasp's fingertips pass above the table
+      and slip off or miss a low bar, tube or pebble that the flower grasp's landed tips hold
+      (docs/design.md §5.4l). A flat grasp already used up leaves the box;
 4. with the funnel search (`funnel.search`, a scenario's `perception.grasp_search`): a grasp whose
    funnel on the shape the camera saw is empty (ε = 0 at every pose scored) is not chosen when another's
    is not; the most resembling of those with a funnel is (`choose_with_funnels`). The paper's argmax
@@ -53,12 +58,14 @@ UPRIGHT = "upright"
 LOW = "low"  # not a choice: it turns the sphere's choice into the flat one (step 3b)
 ROUND = "round"  # not a choice: it turns the box's choice into the sphere's (step 3a)
 SQUAT = "squat"  # not a choice: it turns a low round object's box into the flat choice (step 3a)
+THIN_ROUND = "thin_round"  # not a choice: it turns a thin round-sided object's box into the flat one (3c)
 CHOICES = SHAPES + (FLAT, UPRIGHT)
 FLAT_THRESHOLD = 0.5
 UPRIGHT_THRESHOLD = 0.5
 LOW_THRESHOLD = 0.5
 ROUND_THRESHOLD = 0.5
 SQUAT_THRESHOLD = 0.5
+THIN_ROUND_THRESHOLD = 0.5
 
 
 def _value(resemblances: dict, shape: str) -> float:
@@ -86,8 +93,8 @@ def choose_shape(resemblances: dict, exclude=()) -> str | None:
 
 def _refined(shape: str, resemblances: dict, exclude=()) -> str:
     """The argmax's `shape` refined by the measured shapes (step 3): a round object's box is the sphere,
-    or the flat choice if it is low and squat (3a), a low object's sphere the flat choice (3b); a choice
-    in `exclude` is not made."""
+    or the flat choice if it is low and squat (3a), a low object's sphere the flat choice (3b), a thin
+    round-sided object's box the flat choice (3c); a choice in `exclude` is not made."""
     round_, low, squat = _value(resemblances, ROUND), _value(resemblances, LOW), _value(resemblances, SQUAT)
     is_low = math.isfinite(low) and low >= LOW_THRESHOLD
     is_round = math.isfinite(round_) and round_ >= ROUND_THRESHOLD
@@ -97,6 +104,9 @@ def _refined(shape: str, resemblances: dict, exclude=()) -> str:
             and squat >= SQUAT_THRESHOLD:
         return FLAT
     if shape == "sphere" and FLAT not in exclude and is_low:
+        return FLAT
+    thin_round = _value(resemblances, THIN_ROUND)
+    if shape == "box" and FLAT not in exclude and math.isfinite(thin_round) and thin_round >= THIN_ROUND_THRESHOLD:
         return FLAT
     return shape
 
@@ -133,6 +143,9 @@ def decision_margin(resemblances: dict) -> float:
                 bound = min(bound, 2.0 * abs(squat - SQUAT_THRESHOLD))
     if leader == "sphere" and math.isfinite(low):  # step 3b
         bound = min(bound, 2.0 * abs(low - LOW_THRESHOLD))
+    thin_round = _value(resemblances, THIN_ROUND)
+    if leader == "box" and math.isfinite(thin_round) and not (math.isfinite(round_) and round_ >= ROUND_THRESHOLD):
+        bound = min(bound, 2.0 * abs(thin_round - THIN_ROUND_THRESHOLD))  # step 3c
     return min(lead, bound)
 
 

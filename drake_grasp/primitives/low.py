@@ -37,7 +37,7 @@ FLOWER_MAX_WIDTH = 2.0 * (hand.fingertip_reach(FLOWER_PRESHAPE_RANGE[0], hand.Co
 FLOWER_MAX_WIDTH_WIDTH = 0.005  # m
 
 
-def _lower_than(height: float, middle: float, width: float, footprint) -> float:
+def lower_than(height: float, middle: float, width: float, footprint) -> float:
     """A logistic step down in `height` (1/2 at `middle`, m), times one in the footprint's shorter side at
     `FLOWER_MAX_WIDTH` (the flower grasp must land round it) where `footprint` is known; NaN when the
     height is not finite."""
@@ -53,7 +53,7 @@ def low_resemblance(height: float, footprint=None) -> float:
     """The resemblance in [0, 1] of an object standing `height` m above the table whose footprint spans
     `footprint` (m, its two horizontal sides; None: not known, no width limit); NaN when the height is
     not finite."""
-    return _lower_than(height, LOW_HEIGHT, LOW_WIDTH, footprint)
+    return lower_than(height, LOW_HEIGHT, LOW_WIDTH, footprint)
 
 
 # The squat resemblance (docs/design.md §5.4k): a round object lower than this, that the box leads, takes
@@ -70,7 +70,7 @@ def squat_resemblance(height: float, footprint=None) -> float:
     """The resemblance in [0, 1] of an object `height` m tall, with `footprint` as `low_resemblance`'s, to
     one the flower grasp's landed fingertips meet at or above its widest line (`SQUAT_HEIGHT`), and
     can land round (`FLOWER_MAX_WIDTH`); NaN when the height is not finite."""
-    return _lower_than(height, SQUAT_HEIGHT, SQUAT_HEIGHT_WIDTH, footprint)
+    return lower_than(height, SQUAT_HEIGHT, SQUAT_HEIGHT_WIDTH, footprint)
 
 
 def table_top_squatness(estimate) -> float:

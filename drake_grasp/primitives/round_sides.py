@@ -22,6 +22,15 @@ low resemblances):
   `COMPACT_RATIO_WIDTH`.
 
 The resemblance is their product. Both middles are choices between the groups measured.
+
+**Thin and round-sided** (`thin_round_resemblance`): the same round sides without the compact footprint,
+on an object lower than `THIN_ROUND_HEIGHT` (3.2 cm) that the flower grasp can land round (its
+footprint's shorter side under `low.FLOWER_MAX_WIDTH`). A bar, a tube or an elongated pebble lying
+down is not compact, so the round resemblance leaves it to the box grasp, whose fingertips pass 5 mm
+above the table; on such objects 2.6-3.2 cm tall the box grasp slipped or missed where the flower grasp,
+its tips landed on the table, held (docs/results/holding/thin_band.md). Vertical sides (a brick, a flat
+polycube) keep the box grasp, which carries them at 1 kg where the flower grasp drops them. The paper's
+banana, round-sided and read 3.65 cm tall, stays above the step.
 """
 
 import math
@@ -29,11 +38,14 @@ import math
 import numpy as np
 
 from drake_grasp.primitives.flat import step_down
+from drake_grasp.primitives.low import lower_than
 
 ROUND_RISE = 0.004  # m
 ROUND_RISE_WIDTH = 0.0007  # m
 COMPACT_RATIO = 1.6
 COMPACT_RATIO_WIDTH = 0.05
+THIN_ROUND_HEIGHT = 0.032  # m
+THIN_ROUND_HEIGHT_WIDTH = 0.003  # m
 
 
 def round_resemblance(edge_rise: float, footprint) -> float:
@@ -43,11 +55,31 @@ def round_resemblance(edge_rise: float, footprint) -> float:
     if not (math.isfinite(edge_rise) and np.all(np.isfinite(footprint))) or np.min(footprint) <= 0.0:
         return math.nan
     ratio = float(np.max(footprint) / np.min(footprint))
-    return (1.0 - step_down(float(edge_rise), ROUND_RISE, ROUND_RISE_WIDTH)) * step_down(ratio, COMPACT_RATIO,
-                                                                                         COMPACT_RATIO_WIDTH)
+    return round_sided(edge_rise) * step_down(ratio, COMPACT_RATIO, COMPACT_RATIO_WIDTH)
 
 
 def table_top_roundness(estimate) -> float:
     """`round_resemblance` of a table-top estimate (`table_top.TableTopEstimate`): its edge rise and its
     spans along its footprint's sides."""
     return round_resemblance(float(estimate.edge_rise), np.asarray(estimate.extents_sides, float)[:2])
+
+
+def round_sided(edge_rise: float) -> float:
+    """How much a height map that rises `edge_rise` m inside its edge has round sides, in [0, 1]."""
+    return 1.0 - step_down(float(edge_rise), ROUND_RISE, ROUND_RISE_WIDTH)
+
+
+def thin_round_resemblance(height: float, edge_rise: float, footprint) -> float:
+    """The resemblance in [0, 1] of an object `height` m tall, whose height map rises `edge_rise` m
+    inside its edge and whose footprint spans `footprint` (m, its two horizontal sides), to a thin
+    round-sided one the flower grasp lands round (module docstring); NaN when any is not finite."""
+    footprint = np.asarray(footprint, float)
+    if not (math.isfinite(height) and math.isfinite(edge_rise) and np.all(np.isfinite(footprint))):
+        return math.nan
+    return round_sided(edge_rise) * lower_than(height, THIN_ROUND_HEIGHT, THIN_ROUND_HEIGHT_WIDTH, footprint)
+
+
+def table_top_thin_roundness(estimate) -> float:
+    """`thin_round_resemblance` of a table-top estimate (`table_top.TableTopEstimate`)."""
+    return thin_round_resemblance(float(estimate.height), float(estimate.edge_rise),
+                                  np.asarray(estimate.extents_sides, float)[:2])
