@@ -45,7 +45,8 @@ known table), so it decides first:
 The *margin* says how clear the decision was, in [0, 1]: in step 3, the lead of the best resemblance
 over the next; a flat resemblance near its threshold makes any decision close, so its own distance
 from the threshold, 2 |flat - 1/2|, bounds the margin from above, and so does the upright one's, and
-the low one's where the sphere leads, and the round one's where the box leads.
+the low one's where the sphere leads, and the round one's where the box leads (and, on an object not
+round, the thin-round one's).
 Without those resemblances (the paper's perception), both are the paper's argmax and its lead.
 """
 
