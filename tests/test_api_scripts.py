@@ -3,21 +3,15 @@ compare_fig7.py) run as a user runs them, each short (a 0.5 s hold, a short plan
 only the names drake_grasp.api documents."""
 
 import ast
-import importlib.util
-import pathlib
 
 import pytest
 
 from drake_grasp import api
-
-SCRIPTS = pathlib.Path(__file__).resolve().parent.parent / "scripts"
+from script_loader import SCRIPTS, load_script
 
 
 def _main(name: str):
-    spec = importlib.util.spec_from_file_location(name, SCRIPTS / f"{name}.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module.main
+    return load_script(name).main
 
 
 @pytest.mark.parametrize("name", ["simulate_grasp", "simulate_exploration", "compare_fig7"])

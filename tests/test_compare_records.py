@@ -1,15 +1,12 @@
 """scripts/compare_records.py: matching records, ignoring run fields and added `extra` keys."""
 
 import csv
-import importlib.util
 import json
 import math
-import pathlib
 
-_PATH = pathlib.Path(__file__).resolve().parents[1] / "scripts" / "compare_records.py"
-_SPEC = importlib.util.spec_from_file_location("compare_records", _PATH)
-compare_records = importlib.util.module_from_spec(_SPEC)
-_SPEC.loader.exec_module(compare_records)
+from script_loader import load_script
+
+compare_records = load_script("compare_records")
 
 FIELDS = ["object", "method", "grasp", "seed", "success", "failure", "lift", "wall_time", "extra"]
 

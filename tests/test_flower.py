@@ -39,13 +39,9 @@ def test_the_flower_generator_is_seeded_and_its_objects_are_the_named_sizes(tmp_
 
 
 def test_flower_check_refuses_an_unknown_class_in_one_line(capsys):
-    import importlib.util
-    import pathlib
+    from script_loader import load_script
 
-    path = pathlib.Path(__file__).resolve().parents[1] / "scripts" / "flower_check.py"
-    spec = importlib.util.spec_from_file_location("flower_check", path)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
+    module = load_script("flower_check")
     assert module.main(["--classes", "ball,pear"]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "--classes: choose from " + ", ".join(flower.CLASSES) in err

@@ -223,12 +223,9 @@ def test_report_tables_and_figure_from_records(tmp_path):
 
 
 def test_script_bad_arguments_one_line_exit_2(capsys):
-    import importlib.util
+    from script_loader import load_script
 
-    spec = importlib.util.spec_from_file_location(
-        "near_primitives_check", pathlib.Path(__file__).parents[1] / "scripts" / "near_primitives_check.py")
-    script = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(script)
+    script = load_script("near_primitives_check")
     for argv, message in ((["--count", "0"], "--count must be >= 1"), (["--seed", "1"], "evaluation seed must differ"),
                           (["--workers", "0"], "--workers must be >= 1"), (["--report", "x.txt"], "expected a .md"),
                           (["--bogus"], "unrecognized arguments")):

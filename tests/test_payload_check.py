@@ -1,23 +1,17 @@
 """scripts/payload_check.py: the shapes it writes are simulated at the masses it names, and bad input
 is refused in one line before any work."""
 
-import importlib.util
-import pathlib
 import warnings
 
 import numpy as np
 import pytest
 
 from drake_grasp.objects import resolve_user_object
-
-SCRIPT = pathlib.Path(__file__).resolve().parent.parent / "scripts" / "payload_check.py"
+from script_loader import load_script
 
 
 def _module():
-    spec = importlib.util.spec_from_file_location("payload_check", SCRIPT)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return load_script("payload_check")
 
 
 def test_each_shape_is_loaded_at_its_mass_without_a_warning(tmp_path):

@@ -176,13 +176,9 @@ def test_a_tiny_real_sweep_runs_resumes_and_writes_its_report(tmp_path, short_sc
 
 
 def test_script_rejects_bad_input_before_any_work(tmp_path, capsys):
-    import importlib.util
-    import pathlib
+    from script_loader import load_script
 
-    path = pathlib.Path(__file__).resolve().parents[1] / "scripts" / "sensitivity.py"
-    spec = importlib.util.spec_from_file_location("sensitivity_script", path)
-    script = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(script)
+    script = load_script("sensitivity", "sensitivity_script")
     for argv, message in ((["--trials", "0"], "--trials"), (["--objects", "nope"], "unknown object"),
                           (["--conditions", "base,zzz"], "--conditions"), (["--noise-sigma", "-1"], "--noise-sigma"),
                           (["--out", str(tmp_path / "f.txt")], "not a directory"),

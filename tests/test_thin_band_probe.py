@@ -1,20 +1,14 @@
 """scripts/thin_band_probe.py: its objects are the heights and footprints it names, the same files every
 time, and bad input is refused in one line before any work."""
 
-import importlib.util
-import pathlib
-
 import pytest
 import trimesh
 
-SCRIPT = pathlib.Path(__file__).resolve().parent.parent / "scripts" / "thin_band_probe.py"
+from script_loader import load_script
 
 
 def _module():
-    spec = importlib.util.spec_from_file_location("thin_band_probe", SCRIPT)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return load_script("thin_band_probe")
 
 
 def test_the_objects_have_the_named_heights_and_are_made_the_same_twice(tmp_path):

@@ -1,13 +1,10 @@
 """scripts/time_step_check.py: pairing two scenarios' oracle trials (pure functions, no simulation)."""
 
-import importlib.util
 import math
-import pathlib
 
-_PATH = pathlib.Path(__file__).resolve().parents[1] / "scripts" / "time_step_check.py"
-_SPEC = importlib.util.spec_from_file_location("time_step_check", _PATH)
-time_step_check = importlib.util.module_from_spec(_SPEC)
-_SPEC.loader.exec_module(time_step_check)
+from script_loader import load_script
+
+time_step_check = load_script("time_step_check")
 
 
 def _row(success: bool, slip_mm: float, slip_deg: float, wall: float = 2.0, failure: str = "") -> dict:
