@@ -16,7 +16,7 @@ A files list has one object a line: its class, its path (relative to the list) a
 
 Run: .venv/bin/python scripts/holding_study.py [--objects everyday | --files LIST.tsv] --count 14 --seed 9001
      --seeds 1,2 --attempts 3 --scenarios table_top,funnel --workers 2 --out out/holding
-     [--report docs/results/holding.md] [--classes blob,union,ring,handle]
+     [--report docs/results/holding.md] [--classes blob,union,ring,handle] [--grasps box,precision]
 """
 
 import argparse
@@ -47,10 +47,19 @@ def main() -> int:
     parser.add_argument("--out", default="out/holding")
     parser.add_argument("--report", help="write the summary as Markdown here")
     parser.add_argument("--classes", help="run only these classes of the COUNT objects (comma-separated)")
+    parser.add_argument("--grasps", default="", help="also force each of these grasps (comma-separated: spherical, "
+                        "cylindrical, box, precision), camera-driven, one attempt: a column each beside the "
+                        "algorithm's own choice")
     args = parser.parse_args()
     out = pathlib.Path(args.out)
     seeds = [int(s) for s in args.seeds.split(",")]
     scenarios = args.scenarios.split(",")
+    forced = [g.strip() for g in args.grasps.split(",") if g.strip()]
+    if set(forced) - {"spherical", "cylindrical", "box", "precision"}:  # checked before any work starts
+        print("holding_study: error: --grasps: choose from spherical, cylindrical, box, precision", file=sys.stderr)
+        return 2
+    # A column: (scenario, grasp forced or "" for the algorithm's own choice with --attempts).
+    columns = [(n, g) for n in scenarios for g in [""] + forced]
     if args.classes and not args.files:  # checked before any work starts
         known = _generator(args.objects).CLASSES
         keep = {c.strip() for c in args.classes.split(",") if c.strip()}
@@ -88,9 +97,9 @@ def main() -> int:
     if first_error:
         print(f"holding_study: error: {first_error}", file=sys.stderr)
         return 2
-    specs = [TrialSpec(str(o["file"]), "compliant", "", s, scenario_name=n, attempts=args.attempts,
+    specs = [TrialSpec(str(o["file"]), "compliant", g, s, scenario_name=n, attempts=1 if g else args.attempts,
                        scale=o.get("scale", 1.0))
-             for n in scenarios for o in objects for s in seeds]
+             for n, g in columns for o in objects for s in seeds]
     rows = run_trials(specs, out / "trials.csv", executor=LocalExecutor(args.workers), label="holding")
     wall = time.perf_counter() - start
     shape_class = {str(o["file"]): o["class"] for o in objects}
@@ -99,21 +108,22 @@ def main() -> int:
     failures = collections.defaultdict(collections.Counter)
     chose = collections.defaultdict(collections.Counter)
     tries = collections.defaultdict(list)
-    by_key = {(r["object"], int(r["seed"]), json.loads(r["extra"]).get("scenario")): r for r in rows}
+    by_key = {(r["object"], int(r["seed"]), json.loads(r["extra"]).get("scenario"), r["grasp"]): r for r in rows}
     for spec in specs:
-        r = by_key[(spec.object, spec.seed, spec.scenario_name)]
+        r = by_key[(spec.object, spec.seed, spec.scenario_name, spec.grasp)]
+        column = _label(spec.scenario_name, spec.grasp)
         extra = json.loads(r["extra"])
         attempts = extra.get("attempts") or []
         within = str(r["success"]) in ("1", "True")
         first = bool(attempts[0]["success"]) if attempts else within
-        for key in ((spec.scenario_name, shape_class[spec.object]), (spec.scenario_name, "all")):
+        for key in ((column, shape_class[spec.object]), (column, "all")):
             c = counts[key]
             c[0] += first
             c[1] += within
             c[2] += 1
-        failures[spec.scenario_name][("held" if first else (attempts[0]["failure"] if attempts else r["failure"]))] += 1
-        chose[spec.scenario_name][(attempts[0]["grasp"] if attempts else r["grasp"] or extra.get("chosen")) or "-"] += 1
-        tries[spec.scenario_name].append(len(attempts) or 1)
+        failures[column][("held" if first else (attempts[0]["failure"] if attempts else r["failure"]))] += 1
+        chose[column][(attempts[0]["grasp"] if attempts else r["grasp"] or extra.get("chosen")) or "-"] += 1
+        tries[column].append(len(attempts) or 1)
     classes = sorted({c for _, c in counts} - {"all"}) + ["all"]
     source = (f"--files {args.files}" if args.files
               else f"--objects {args.objects} --count {args.count} --seed {args.seed}")
@@ -123,19 +133,21 @@ def main() -> int:
     lines = [f"# Holding what users bring: {title}, first attempt and within {args.attempts}",
              "", f"`scripts/holding_study.py {source} --seeds {args.seeds} "
              f"--attempts {args.attempts} --scenarios {args.scenarios}"
-             + (f" --classes {args.classes}" if args.classes else "") + f"`: {what}, trial seeds {args.seeds}, "
+             + (f" --classes {args.classes}" if args.classes else "")
+             + (f" --grasps {args.grasps}" if forced else "") + f"`: {what}, trial seeds {args.seeds}, "
              "the algorithm's own choice (camera only), "
              f"{len(rows)} trials in {wall / 60:.0f} min on {args.workers} workers.", "",
-             "| class | " + " | ".join(f"{n}: first attempt | {n}: within {args.attempts}" for n in scenarios) + " |",
-             "|---|" + "---|---|" * len(scenarios)]
+             "| class | " + " | ".join(f"{_label(n, g)}: first attempt | {_label(n, g)}: within {1 if g else args.attempts}"
+                                      for n, g in columns) + " |",
+             "|---|" + "---|---|" * len(columns)]
     for c in classes:
         cells = []
-        for n in scenarios:
-            first, within, total = counts[(n, c)]
+        for n, g in columns:
+            first, within, total = counts[(_label(n, g), c)]
             cells += [short_rate(first, total), short_rate(within, total)]
         lines.append(f"| {c} | " + " | ".join(cells) + " |")
     lines.append("")
-    for n in scenarios:
+    for n in (_label(n, g) for n, g in columns):
         lines.append(f"- {n}: first attempts {dict(failures[n])}; first grasp chosen {dict(chose[n])}; "
                      f"attempts made {dict(collections.Counter(tries[n]))}")
     text = "\n".join(lines) + "\n"
@@ -143,6 +155,11 @@ def main() -> int:
     if args.report:
         write_atomically(pathlib.Path(args.report), text)
     return 0
+
+
+def _label(scenario: str, grasp: str) -> str:
+    """A column's name: the scenario, and the grasp when one was forced."""
+    return f"{scenario}, {grasp} forced" if grasp else scenario
 
 
 def _generator(name: str):

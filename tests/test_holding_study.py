@@ -68,3 +68,18 @@ def test_the_files_are_checked_on_the_workers_and_the_first_bad_one_is_named(tmp
     assert done.returncode == 2, done.stderr
     assert done.stderr.strip().count("\n") == 0 and "sheet_a.obj" in done.stderr and "sheet_b" not in done.stderr
     assert not (tmp_path / "out" / "trials.csv").exists()
+
+
+def test_an_unknown_forced_grasp_is_refused(tmp_path):
+    done = _study(tmp_path / "out", "--grasps", "box,pinch")
+    assert done.returncode == 2
+    assert done.stderr.strip().count("\n") == 0 and "--grasps" in done.stderr
+    assert not (tmp_path / "out" / "trials.csv").exists()
+
+
+def test_the_tools_generator_names_its_classes(tmp_path):
+    done = subprocess.run([sys.executable, str(ROOT / "scripts" / "holding_study.py"), "--objects", "tools",
+                           "--classes", "hammer,teapot", "--out", str(tmp_path / "out")],
+                          capture_output=True, text=True, timeout=300)
+    assert done.returncode == 2
+    assert "hammer, screwdriver, clamp, marker, wrench" in done.stderr
