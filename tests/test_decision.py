@@ -161,3 +161,25 @@ def test_a_thin_round_sided_object_takes_the_flower_grasp_where_the_box_remains(
     assert choose_shape(res) == "box"
     # The margin: the box's lead (0.9), bounded by the rule's own distance from its threshold.
     assert decision_margin({**res, "flat": 0.1, "thin_round": 0.6}) == pytest.approx(0.2)
+
+
+def test_a_thin_object_narrow_where_the_fingers_close_takes_the_flower_grasp():
+    from drake_grasp.primitives.narrow import thin_narrow_resemblance
+
+    handle = thin_narrow_resemblance(0.027, 0.028, [0.26, 0.09])  # a hammer: the handle 2.8 cm wide
+    polycube = thin_narrow_resemblance(0.028, 0.079, [0.12, 0.08])  # a flat polycube, 7.9 cm wide there
+    banana = thin_narrow_resemblance(0.0365, 0.04, [0.19, 0.05])  # the paper's banana, as read: taller
+    wide = thin_narrow_resemblance(0.027, 0.028, [0.25, 0.22])  # wider than the flower grasp lands round
+    assert handle > 0.75 and polycube < 0.01 and banana < 0.2 and wide < 0.01
+    assert math.isnan(thin_narrow_resemblance(0.027, math.nan, [0.2, 0.1]))
+    res = {"sphere": 0.0, "cylinder": 0.0, "box": 1.0, "flat": 0.3, "upright": 0.0, "low": 1.0,
+           "round": 0.0, "squat": 1.0, "thin_round": 0.0}
+    assert choose_shape({**res, "thin_narrow": handle}) == "flat"
+    assert choose_shape({**res, "thin_narrow": polycube}) == "box"
+    # The cylindrical grasp from above closes the same fingers across it: also the flower grasp.
+    assert choose_shape({**res, "cylinder": 1.0, "box": 0.2, "thin_narrow": handle}) == "flat"
+    # The flower grasp used up: the argmax's grasp again; a sphere's lead is another rule's (3b).
+    assert choose_shape({**res, "thin_narrow": handle}, exclude=("flat",)) == "box"
+    # The margin: bounded by the rule's own distance from its threshold.
+    assert decision_margin({**res, "flat": 0.1, "thin_narrow": 0.8}) == pytest.approx(0.6)
+    assert decision_margin({**res, "flat": 0.1, "thin_narrow": 0.45}) == pytest.approx(0.1)

@@ -256,3 +256,25 @@ def test_the_edge_rise_tells_vertical_sides_from_round_ones():
     assert math.isnan(table_top.edge_rise(np.zeros((4, 4))))
     again = TableTopVector.from_vector(TableTopVector(ball, None, False, 3).to_vector())
     assert again.estimate.edge_rise == pytest.approx(ball.edge_rise)
+
+
+def test_the_grip_width_is_the_handle_s_not_the_head_s():
+    """A hammer lying down: a 24 × 2.4 cm handle along x and a 10 × 2.8 cm head across its end. The
+    footprint is 10 cm wide; where the box grasp's fingers close, about the centroid, it is the handle's
+    2.4 cm. A 12 × 8 cm box is 8 cm wide there."""
+    def hammer(X, Y):
+        handle = (np.abs(Y) <= 0.012) & (X >= 0.40) & (X <= 0.64)
+        head = (np.abs(Y) <= 0.05) & (X >= 0.612) & (X <= 0.64)
+        return np.where(handle | head, 0.026, np.nan)
+
+    xs, ys = np.arange(0.38, 0.66, 0.001), np.arange(-0.07, 0.07, 0.001)
+    estimate = table_top.estimate(_map_of(_surface_points(hammer, xs, ys)))
+    assert max(estimate.extents_sides[:2]) == pytest.approx(0.24, abs=0.004)
+    assert min(estimate.extents_sides[:2]) == pytest.approx(0.10, abs=0.004)
+    assert estimate.grip_width == pytest.approx(0.024, abs=0.004)
+    box = table_top.estimate(_map_of(_surface_points(_rotated_box_top((0.52, 0.01), 0.12, 0.08, 0.03, 0.4), xs, ys)))
+    assert box.grip_width == pytest.approx(0.08, abs=0.004)
+    again = TableTopVector.from_vector(TableTopVector(estimate, None, False, 3).to_vector())
+    assert again.estimate.grip_width == pytest.approx(estimate.grip_width)
+    assert math.isnan(table_top.grip_width(np.zeros((0, 2)), (0.5, 0.0), (1.0, 0.0)))
+    assert math.isnan(table_top.grip_width(np.zeros((3, 2)), (0.5, 0.0), (0.0, 0.0)))  # a vertical axis

@@ -34,7 +34,11 @@ known table), so it decides first:
       round-sided, whatever its footprint, and narrow enough for the flower grasp to land round it) is
       at least `THIN_ROUND_THRESHOLD` (1/2), **flat**: the box grasp's fingertips pass above the table
       and slip off or miss a low bar, tube or pebble that the flower grasp's landed tips hold
-      (docs/design.md §5.4l). A flat grasp already used up leaves the box;
+      (docs/design.md §5.4l); so too, where the box or the cylinder remains, where the thin-narrow
+      resemblance (`primitives.narrow`: lower than 3.2 cm and narrower than 5 cm where the fingers
+      close, a tool's handle) is at least `THIN_NARROW_THRESHOLD` (1/2): both grasps close the fingers
+      across it from above, and their tips meet it curled in past the bottom of their arc (§5.4m). A
+      flat grasp already used up leaves the box or the cylinder;
 4. with the funnel search (`funnel.search`, a scenario's `perception.grasp_search`): a grasp whose
    funnel on the shape the camera saw is empty (ε = 0 at every pose scored) is not chosen when another's
    is not; the most resembling of those with a funnel is (`choose_with_funnels`). The paper's argmax
@@ -46,7 +50,7 @@ The *margin* says how clear the decision was, in [0, 1]: in step 3, the lead of 
 over the next; a flat resemblance near its threshold makes any decision close, so its own distance
 from the threshold, 2 |flat - 1/2|, bounds the margin from above, and so does the upright one's, and
 the low one's where the sphere leads, and the round one's where the box leads (and, on an object not
-round, the thin-round one's).
+round, the thin-round one's, and the thin-narrow one's where the box or the cylinder leads).
 Without those resemblances (the paper's perception), both are the paper's argmax and its lead.
 """
 
@@ -60,6 +64,7 @@ LOW = "low"  # not a choice: it turns the sphere's choice into the flat one (ste
 ROUND = "round"  # not a choice: it turns the box's choice into the sphere's (step 3a)
 SQUAT = "squat"  # not a choice: it turns a low round object's box into the flat choice (step 3a)
 THIN_ROUND = "thin_round"  # not a choice: it turns a thin round-sided object's box into the flat one (3c)
+THIN_NARROW = "thin_narrow"  # not a choice: it turns a thin object narrow at the grasp's box into the flat one (3c)
 CHOICES = SHAPES + (FLAT, UPRIGHT)
 FLAT_THRESHOLD = 0.5
 UPRIGHT_THRESHOLD = 0.5
@@ -67,6 +72,7 @@ LOW_THRESHOLD = 0.5
 ROUND_THRESHOLD = 0.5
 SQUAT_THRESHOLD = 0.5
 THIN_ROUND_THRESHOLD = 0.5
+THIN_NARROW_THRESHOLD = 0.5
 
 
 def _value(resemblances: dict, shape: str) -> float:
@@ -95,7 +101,8 @@ def choose_shape(resemblances: dict, exclude=()) -> str | None:
 def _refined(shape: str, resemblances: dict, exclude=()) -> str:
     """The argmax's `shape` refined by the measured shapes (step 3): a round object's box is the sphere,
     or the flat choice if it is low and squat (3a), a low object's sphere the flat choice (3b), a thin
-    round-sided object's box the flat choice (3c); a choice in `exclude` is not made."""
+    round-sided object's box, or a thin object's box or cylinder where it is narrow at the grasp, the
+    flat choice (3c); a choice in `exclude` is not made."""
     round_, low, squat = _value(resemblances, ROUND), _value(resemblances, LOW), _value(resemblances, SQUAT)
     is_low = math.isfinite(low) and low >= LOW_THRESHOLD
     is_round = math.isfinite(round_) and round_ >= ROUND_THRESHOLD
@@ -106,8 +113,11 @@ def _refined(shape: str, resemblances: dict, exclude=()) -> str:
         return FLAT
     if shape == "sphere" and FLAT not in exclude and is_low:
         return FLAT
-    thin_round = _value(resemblances, THIN_ROUND)
+    thin_round, thin_narrow = _value(resemblances, THIN_ROUND), _value(resemblances, THIN_NARROW)
     if shape == "box" and FLAT not in exclude and math.isfinite(thin_round) and thin_round >= THIN_ROUND_THRESHOLD:
+        return FLAT
+    if shape in ("box", "cylinder") and FLAT not in exclude and math.isfinite(thin_narrow) \
+            and thin_narrow >= THIN_NARROW_THRESHOLD:
         return FLAT
     return shape
 
@@ -144,9 +154,18 @@ def decision_margin(resemblances: dict) -> float:
                 bound = min(bound, 2.0 * abs(squat - SQUAT_THRESHOLD))
     if leader == "sphere" and math.isfinite(low):  # step 3b
         bound = min(bound, 2.0 * abs(low - LOW_THRESHOLD))
-    thin_round = _value(resemblances, THIN_ROUND)
-    if leader == "box" and math.isfinite(thin_round) and not (math.isfinite(round_) and round_ >= ROUND_THRESHOLD):
-        bound = min(bound, 2.0 * abs(thin_round - THIN_ROUND_THRESHOLD))  # step 3c
+    if leader in ("box", "cylinder") and not (math.isfinite(round_) and round_ >= ROUND_THRESHOLD):  # step 3c
+        # Either resemblance fires it: the margin is the larger one's distance from its threshold when
+        # one fires, else the nearer one's.
+        rules = ((THIN_ROUND, THIN_ROUND_THRESHOLD),) if leader == "box" else ()
+        distances = [(2.0 * abs(v - t), v >= t)
+                     for v, t in ((_value(resemblances, k), t) for k, t in rules + ((THIN_NARROW, THIN_NARROW_THRESHOLD),))
+                     if math.isfinite(v)]
+        fired = [d for d, fires in distances if fires]
+        if fired:
+            bound = min(bound, max(fired))
+        elif distances:
+            bound = min(bound, min(d for d, _ in distances))
     return min(lead, bound)
 
 

@@ -235,6 +235,8 @@ class TableTopEstimate:
             half the height), m: the vertical centre's model uncertainty.
         edge_rise: how much the map rises just inside the footprint's edge (`edge_rise`), m: about 0
             for vertical sides (a box, a mug, a polycube), a centimetre for a round solid's.
+        grip_width: the footprint's width across the principal axis where the box grasp's fingers
+            close (`grip_width`), m.
     """
 
     centre: np.ndarray
@@ -246,6 +248,7 @@ class TableTopEstimate:
     cells: int
     centre_bracket: float = 0.0
     edge_rise: float = math.nan
+    grip_width: float = math.nan
 
 
 # How far inside the footprint's edge the edge rise looks, in cells (3 mm: 6 mm in).
@@ -271,6 +274,31 @@ def edge_rise(heights: np.ndarray, reach: int = EDGE_REACH) -> float:
     boundary = occupied & ~ndimage.binary_erosion(occupied)
     near = ndimage.maximum_filter(h, size=2 * reach + 1, mode="constant", cval=0.0)
     return float(np.median((near - h)[boundary]))
+
+
+# Half the length, along the principal axis, of the band the box grasp's fingers close in: F3 on the
+# centre line, F1 and F2's 23 mm pads from 13.5 to 36.5 mm either side of it (`hand.AW`, `hand.DISTAL_WIDTH`).
+GRIP_BAND = 0.0365  # m
+
+
+def grip_width(xy: np.ndarray, centre_xy, axis, band: float = GRIP_BAND) -> float:
+    """The footprint's width across the horizontal `axis` among the occupied cells (centres `xy`, N × 2,
+    m) within `band` of `centre_xy` along it, m: the span of their centres (an edge lies anywhere in its
+    boundary cell, on average at the centre, so the centres' span is the unbiased one, as for the column
+    ends). NaN without such a cell or a horizontal axis.
+
+    It is the width the box grasp's fingers meet when they close across the axis at the centre: a
+    hammer's handle (2-3 cm), not its head's length, which the footprint's own spans give
+    (`primitives.narrow`)."""
+    axis = np.asarray(axis, float)[:2]
+    if np.linalg.norm(axis) < 1e-9 or len(xy) == 0:
+        return math.nan
+    axis = axis / np.linalg.norm(axis)
+    d = np.asarray(xy, float) - np.asarray(centre_xy, float)[:2]
+    near = np.abs(d @ axis) <= band
+    if not np.any(near):
+        return math.nan
+    return float(np.ptp(d[near] @ np.array([-axis[1], axis[0]])))
 
 
 def min_area_rectangle(points_xy: np.ndarray) -> tuple[float, np.ndarray]:
@@ -336,7 +364,8 @@ def estimate(height_map: HeightMap, min_cells: int = 3) -> TableTopEstimate | No
         centre=centre, principal_axis=axis, sides=sides,
         extents_axis=_outline_spans(ends, axis_frame, xy, outline),
         extents_sides=_outline_spans(ends, side_frame, xy, outline), height=top, cells=len(h),
-        centre_bracket=0.5 * (z_high - z_low), edge_rise=edge_rise(height_map.filled_heights()))
+        centre_bracket=0.5 * (z_high - z_low), edge_rise=edge_rise(height_map.filled_heights()),
+        grip_width=grip_width(xy, centroid_xy, axis if np.linalg.norm(axis[:2]) > 0.5 else sides))
 
 
 def _outline_spans(ends: np.ndarray, directions, xy: np.ndarray, outline: np.ndarray | None) -> np.ndarray:
