@@ -183,3 +183,5 @@ def test_a_thin_object_narrow_where_the_fingers_close_takes_the_flower_grasp():
     # The margin: bounded by the rule's own distance from its threshold.
     assert decision_margin({**res, "flat": 0.1, "thin_narrow": 0.8}) == pytest.approx(0.6)
     assert decision_margin({**res, "flat": 0.1, "thin_narrow": 0.45}) == pytest.approx(0.1)
+    assert decision_margin({**res, "cylinder": 1.0, "box": 0.2, "flat": 0.1, "round": 0.9,
+                            "thin_narrow": 0.8}) == pytest.approx(0.6)  # the round rule is the box's (3a)

@@ -24,11 +24,11 @@ The five classes (``CLASSES``), each a closed 2-manifold in metres, built with M
   with a slotted jaw 2.6-4.4 cm across at each end.
 
 Each rests as it would when put down: on the stable face of its hull that puts its real centre of
-mass lowest (`resting_transform`), then turned about the vertical by an angle from the seed. Every second object of a class (odd ``index // len(CLASSES)``) is written as a URDF
-naming its OBJ, with the real inertial block of its parts (steel 7850 kg/m³; wood or plastic handles
-500-1300 kg/m³; a marker's and a clamp's plastic, hollow, 300-700 kg/m³), so the centre of mass lies
-towards a hammer's head and a screwdriver's shaft; the others are bare meshes, which the loader gives
-its default density. Object ``i`` of seed ``s`` is drawn from ``numpy.random.default_rng([s, i])``: the
+mass lowest (`resting_transform`), then turned about the vertical by an angle from the seed. Every
+second object of a class (odd ``index // len(CLASSES)``) is written as a URDF naming its OBJ, with
+the real inertial block of its parts (steel 7850 kg/m³; wood or plastic handles 500-1300 kg/m³; a
+marker's and a clamp's plastic, hollow, 300-700 kg/m³), so the centre of mass lies towards a hammer's
+head and a screwdriver's shaft; the others are bare meshes, which the loader gives its default density. Object ``i`` of seed ``s`` is drawn from ``numpy.random.default_rng([s, i])``: the
 same (seed, index) gives byte-identical files whatever the count.
 """
 

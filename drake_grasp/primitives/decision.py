@@ -64,7 +64,7 @@ LOW = "low"  # not a choice: it turns the sphere's choice into the flat one (ste
 ROUND = "round"  # not a choice: it turns the box's choice into the sphere's (step 3a)
 SQUAT = "squat"  # not a choice: it turns a low round object's box into the flat choice (step 3a)
 THIN_ROUND = "thin_round"  # not a choice: it turns a thin round-sided object's box into the flat one (3c)
-THIN_NARROW = "thin_narrow"  # not a choice: it turns a thin object narrow at the grasp's box into the flat one (3c)
+THIN_NARROW = "thin_narrow"  # not a choice: it turns a thin object's box or cylinder, narrow at the grasp, flat (3c)
 CHOICES = SHAPES + (FLAT, UPRIGHT)
 FLAT_THRESHOLD = 0.5
 UPRIGHT_THRESHOLD = 0.5
@@ -154,12 +154,12 @@ def decision_margin(resemblances: dict) -> float:
                 bound = min(bound, 2.0 * abs(squat - SQUAT_THRESHOLD))
     if leader == "sphere" and math.isfinite(low):  # step 3b
         bound = min(bound, 2.0 * abs(low - LOW_THRESHOLD))
-    if leader in ("box", "cylinder") and not (math.isfinite(round_) and round_ >= ROUND_THRESHOLD):  # step 3c
+    if leader == "cylinder" or (leader == "box" and not (math.isfinite(round_) and round_ >= ROUND_THRESHOLD)):  # 3c
         # Either resemblance fires it: the margin is the larger one's distance from its threshold when
         # one fires, else the nearer one's.
         rules = ((THIN_ROUND, THIN_ROUND_THRESHOLD),) if leader == "box" else ()
-        distances = [(2.0 * abs(v - t), v >= t)
-                     for v, t in ((_value(resemblances, k), t) for k, t in rules + ((THIN_NARROW, THIN_NARROW_THRESHOLD),))
+        rules += ((THIN_NARROW, THIN_NARROW_THRESHOLD),)
+        distances = [(2.0 * abs(v - t), v >= t) for v, t in ((_value(resemblances, k), t) for k, t in rules)
                      if math.isfinite(v)]
         fired = [d for d, fires in distances if fires]
         if fired:
