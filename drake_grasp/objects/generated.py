@@ -75,6 +75,14 @@ def write_generated(out_dir: Path, name: str, mesh: trimesh.Trimesh, shape_class
             "volume_m3": float(f"{mesh.volume:.6e}"), **extra}
 
 
+def inertial_element(mass: float, com, inertia) -> str:
+    """A URDF inertial element, as XML text, of a real `mass` (kg) with its centre of mass `com` (m)
+    and `inertia` (3 × 3, kg·m²) about it."""
+    return (f'<inertial><origin xyz="{com[0]:.6f} {com[1]:.6f} {com[2]:.6f}"/><mass value="{mass:.6f}"/>'
+            f'<inertia ixx="{inertia[0, 0]:.6e}" ixy="{inertia[0, 1]:.6e}" ixz="{inertia[0, 2]:.6e}" '
+            f'iyy="{inertia[1, 1]:.6e}" iyz="{inertia[1, 2]:.6e}" izz="{inertia[2, 2]:.6e}"/></inertial>')
+
+
 def one_link_urdf(name: str, mesh_file: str, inertial: str) -> str:
     """A one-link URDF named `name` whose visual and collision are `mesh_file`, with the `inertial`
     element given as XML text."""

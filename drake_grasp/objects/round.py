@@ -23,7 +23,8 @@ from pathlib import Path
 import numpy as np
 import trimesh
 
-from drake_grasp.objects.generated import one_link_urdf, placed_on_table, write_generated, write_manifest
+from drake_grasp.objects.generated import (inertial_element, one_link_urdf, placed_on_table, write_generated,
+                                          write_manifest)
 
 CLASSES = ("round",)
 SIZE_RANGE = (0.04, 0.11)  # m: the largest horizontal diameter before stretching
@@ -53,12 +54,8 @@ def round_object(seed: int, index: int) -> tuple[str, trimesh.Trimesh, float | N
 def urdf_text(name: str, mesh_file: str, mesh: trimesh.Trimesh, mass: float) -> str:
     """A one-link URDF naming `mesh_file`, with `mass` (kg) and the mesh's inertia at that mass about
     its centre of mass."""
-    inertia = mesh.moment_inertia * (mass / mesh.volume)
-    com = mesh.center_mass
     return one_link_urdf(name, mesh_file,
-                         f'<inertial><origin xyz="{com[0]:.6f} {com[1]:.6f} {com[2]:.6f}"/><mass value="{mass:.6f}"/>'
-                         f'<inertia ixx="{inertia[0, 0]:.6e}" ixy="{inertia[0, 1]:.6e}" ixz="{inertia[0, 2]:.6e}" '
-                         f'iyy="{inertia[1, 1]:.6e}" iyz="{inertia[1, 2]:.6e}" izz="{inertia[2, 2]:.6e}"/></inertial>')
+                         inertial_element(mass, mesh.center_mass, mesh.moment_inertia * (mass / mesh.volume)))
 
 
 def generate(count: int, seed: int, out_dir: str | Path) -> list[dict]:

@@ -40,8 +40,8 @@ from pathlib import Path
 import numpy as np
 import trimesh
 
-from drake_grasp.objects.generated import (CIRCULAR_SEGMENTS, manifold, one_link_urdf, placed_on_table,
-                                          to_trimesh, write_generated, write_manifest)
+from drake_grasp.objects.generated import (CIRCULAR_SEGMENTS, inertial_element, manifold, one_link_urdf,
+                                          placed_on_table, to_trimesh, write_generated, write_manifest)
 
 CLASSES = ("hammer", "screwdriver", "clamp", "marker", "wrench")
 FORMATS = ("mesh", "urdf")
@@ -144,6 +144,8 @@ def tool_object(seed: int, index: int) -> tuple[str, str, trimesh.Trimesh, tuple
     shape_class = CLASSES[index % len(CLASSES)]
     parts = [(to_trimesh(solid), density) for solid, density in _GENERATORS[shape_class](rng)]
     m = manifold()
+    # The union of the parts as meshes (float32 vertices), not of the solids they came from: the two
+    # differ in the last digits, and the studies' objects are these bytes.
     whole = to_trimesh(m.Manifold.batch_boolean([
         m.Manifold(m.Mesh(vert_properties=np.asarray(p.vertices, np.float32), tri_verts=np.asarray(p.faces, np.uint32)))
         for p, _ in parts], m.OpType.Add))
@@ -199,10 +201,7 @@ def format_of(index: int) -> str:
 def urdf_text(name: str, mesh_file: str, mass: float, com: np.ndarray, inertia: np.ndarray) -> str:
     """A one-link URDF naming `mesh_file`, with the tool's real `mass` (kg), centre of mass `com` (m) and
     `inertia` about it (kg·m²)."""
-    return one_link_urdf(name, mesh_file,
-                         f'<inertial><origin xyz="{com[0]:.6f} {com[1]:.6f} {com[2]:.6f}"/><mass value="{mass:.6f}"/>'
-                         f'<inertia ixx="{inertia[0, 0]:.6e}" ixy="{inertia[0, 1]:.6e}" ixz="{inertia[0, 2]:.6e}" '
-                         f'iyy="{inertia[1, 1]:.6e}" iyz="{inertia[1, 2]:.6e}" izz="{inertia[2, 2]:.6e}"/></inertial>')
+    return one_link_urdf(name, mesh_file, inertial_element(mass, com, inertia))
 
 
 def generate(count: int, seed: int, out_dir: str | Path) -> list[dict]:

@@ -31,6 +31,8 @@ Where the box or the cylinder remains and this is at least 1/2, the flower grasp
 
 import math
 
+import numpy as np
+
 from drake_grasp.primitives.flat import step_down
 from drake_grasp.primitives.low import lower_than
 from drake_grasp.primitives.round_sides import THIN_ROUND_HEIGHT, THIN_ROUND_HEIGHT_WIDTH
@@ -51,7 +53,5 @@ def thin_narrow_resemblance(height: float, grip_width: float, footprint) -> floa
 
 def table_top_thin_narrowness(estimate) -> float:
     """`thin_narrow_resemblance` of a table-top estimate (`table_top.TableTopEstimate`)."""
-    import numpy as np
-
     return thin_narrow_resemblance(float(estimate.height), float(estimate.grip_width),
                                    np.asarray(estimate.extents_sides, float)[:2])
