@@ -69,6 +69,9 @@ TABLE_CLEARANCE = 0.005
 # this hard along the palm normal while the hand closes (N: 6 N let the tips ride over 8-12 mm plates).
 FLOWER_MARGIN = 0.012
 FLOWER_SINK = 0.006
+# The flower grasp lands outside the footprint's measured reach across its closing direction
+# (`ObjectEstimate.reach_across`) where the grip was measured along the fingers' row within this, rad.
+GRIP_ALIGNMENT = math.radians(15.0)
 FLOWER_FORCE = 15.0
 # The range of the preshape's proximal angle, rad: from where the tips still point down (below 40 deg
 # they would land flat) to where they nearly meet under the palm.
@@ -170,6 +173,10 @@ class ObjectEstimate:
         table_z: the height of the table the object rests on, m, where it is known (the table-top
             estimate measures heights from it); None: the object's bottom, the centre less its half
             extent along the vertical (`table_height`).
+        grip_axis, grip_reach: where the table-top estimate measured it, how far the footprint reaches
+            either way (m) across the horizontal unit direction `grip_axis` from the centre, within the
+            band fingers closing across it meet (`primitives.table_top.grip_reach`); None and NaN where
+            it was not measured (`reach_across`).
     """
 
     center: np.ndarray
@@ -178,6 +185,8 @@ class ObjectEstimate:
     principal_axis: np.ndarray | None = None
     source: str = "oracle"
     table_z: float | None = None
+    grip_axis: np.ndarray | None = None
+    grip_reach: float = math.nan
 
     def __post_init__(self):
         for name in ("center", "R_WB", "size"):
@@ -191,6 +200,20 @@ class ObjectEstimate:
         """Half the object's (box) extent along a world direction, m."""
         d = np.asarray(direction_W, float)
         return 0.5 * float(np.abs(np.asarray(self.R_WB).T @ d) @ np.asarray(self.size))
+
+    def reach_across(self, along_W: np.ndarray) -> float:
+        """How far from the centre, m, the object reaches across the horizontal direction `along_W`,
+        where fingers closing across it at the centre meet it: the measured `grip_reach` where the grip
+        was measured along (within GRIP_ALIGNMENT of) that direction, else half the box's extent across
+        it. On a hammer the first is the handle's half width and the second half the head's length; on
+        a T lying flat, with its centroid off its footprint rectangle's middle, the first is the nearer
+        to where the stem's far edge really is."""
+        along = np.asarray(along_W, float)
+        across = np.cross([0.0, 0.0, 1.0], along)
+        if self.grip_axis is not None and math.isfinite(self.grip_reach) and np.linalg.norm(across) > 1e-9:
+            if abs(float(np.asarray(self.grip_axis, float) @ along)) >= math.cos(GRIP_ALIGNMENT) * np.linalg.norm(along):
+                return float(self.grip_reach)
+        return self.half_extent_along(across / max(np.linalg.norm(across), 1e-12))
 
     @property
     def table_height(self) -> float:
@@ -432,7 +455,7 @@ def precision_grasp(estimate: ObjectEstimate) -> GraspPlan:
             closing_side = max((long_axis, short_axis), key=lambda i: abs(float(R[:2, i] @ reach)))
         R_WP = _palm_rotation(_DOWN, R[:, closing_side])
         spread, thumb_closes = ComplianceMode.CYLINDRICAL.spread, True
-        angle = flower_landing_angle(estimate.half_extent_along(R_WP.col(1)), spread)
+        angle = flower_landing_angle(estimate.reach_across(R_WP.col(0)), spread)
         preshape = (angle,) * 3 + (angle * hand.DISTAL_PER_PROXIMAL,) * 3
     # F3 (closing or open) to the right of the arm's reach: a half-turn changes neither the preshape nor
     # the target (`flower_facing`).

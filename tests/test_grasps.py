@@ -1,5 +1,6 @@
 """The compliant grasps' geometry (pure functions of an object estimate) and the trial variation."""
 
+import dataclasses
 import math
 
 import numpy as np
@@ -124,6 +125,27 @@ def test_the_flower_grasp_lands_the_fingertips_on_the_table_clear_of_the_object(
     np.testing.assert_allclose(np.abs(plan.X_WP_target.rotation().col(0) @ [math.cos(yaw), math.sin(yaw), 0]), 1.0)
     np.testing.assert_allclose(plan.X_WP_target.rotation().col(2), [0, 0, -1], atol=1e-12)
     assert GraspType.parse("Precision") == GraspType.PRECISION
+
+
+def test_the_flower_grasp_lands_outside_the_measured_grip_not_the_footprint_box():
+    """A hammer-like footprint 25 × 9 cm whose grip (the handle) reaches 1.3 cm either way where the
+    fingers close: the tips land FLOWER_MARGIN outside the handle, not outside half the head's length.
+    The reach counts only where it was measured along the fingers' row (GRIP_ALIGNMENT); across it, or
+    without one, the box's half extent does."""
+    yaw = math.radians(30)
+    box = _estimate([0.5, 0.0, 0.0125], [0.25, 0.09, 0.025], yaw=yaw)
+    along = np.array([math.cos(yaw), math.sin(yaw), 0.0])
+    gripped = dataclasses.replace(box, grip_axis=along, grip_reach=0.013)
+    assert gripped.reach_across(along) == pytest.approx(0.013)
+    assert gripped.reach_across(-along) == pytest.approx(0.013)
+    assert box.reach_across(along) == pytest.approx(0.045)
+    turned = RotationMatrix.MakeZRotation(math.radians(20)).matrix() @ along
+    assert gripped.reach_across(turned) == pytest.approx(box.half_extent_along(np.cross([0, 0, 1], turned)))
+    angle = precision_grasp(gripped).finger_preshape[0]
+    assert hand.fingertip_reach(angle) >= 0.013 + FLOWER_MARGIN - 1e-9
+    assert hand.fingertip_reach(angle + math.radians(1)) < 0.013 + FLOWER_MARGIN
+    assert angle > precision_grasp(box).finger_preshape[0] + math.radians(5)  # the tips land nearer
+    np.testing.assert_allclose(precision_grasp(gripped).X_WP_target.translation()[:2], [0.5, 0.0])
 
 
 @pytest.mark.parametrize("size, pinches", [

@@ -278,3 +278,20 @@ def test_the_grip_width_is_the_handle_s_not_the_head_s():
     assert again.estimate.grip_width == pytest.approx(estimate.grip_width)
     assert math.isnan(table_top.grip_width(np.zeros((0, 2)), (0.5, 0.0), (1.0, 0.0)))
     assert math.isnan(table_top.grip_width(np.zeros((3, 2)), (0.5, 0.0), (0.0, 0.0)))  # a vertical axis
+    assert estimate.grip_reach == pytest.approx(0.012, abs=0.003)  # the handle's half width
+    np.testing.assert_allclose(np.abs(estimate.grip_axis), [1, 0, 0], atol=0.02)
+    np.testing.assert_allclose(again.estimate.grip_axis, estimate.grip_axis)
+    assert again.estimate.grip_reach == pytest.approx(estimate.grip_reach)
+
+
+def test_the_grip_reach_is_the_far_edge_s_on_a_footprint_off_its_centroid():
+    """Offsets across the axis of cells within the band: a T-like section whose stem reaches 3 cm on one
+    side of the centre and 1 cm on the other reaches 3 cm (its width, 4 cm, halved would say 2 cm);
+    cells beyond the band along the axis do not count."""
+    y = np.arange(-0.01, 0.0301, 0.002)
+    xy = np.column_stack([np.full(len(y), 0.5), y])
+    far = np.array([[0.5 + 0.05, 0.08]])  # 5 cm along the axis: outside the 3.65 cm band
+    points = np.vstack([xy, far])
+    assert table_top.grip_reach(points, (0.5, 0.0), (1.0, 0.0)) == pytest.approx(0.03)
+    assert table_top.grip_width(points, (0.5, 0.0), (1.0, 0.0)) == pytest.approx(0.04)
+    assert math.isnan(table_top.grip_reach(points, (0.5, 0.0), (0.0, 0.0)))

@@ -25,16 +25,17 @@ from drake_grasp.primitives.camera_model import CameraIntrinsics
 
 @dataclasses.dataclass
 class TableTopVector:
-    """The `table_top` output (world frame; m, degrees), 28 numbers:
+    """The `table_top` output (world frame; m, degrees), 32 numbers:
 
     valid (1: an estimate), centre (3), principal_axis (3), sides (3), extents_axis (3),
     extents_sides (3), height, cells, clipped (1: the object overran the map), views; then the spread
     of the two halves: centre, axis_deg, extents (3) (NaN while either half has no estimate); the
     table's height, the height map's reference plane (what the object stands on, known to the scene);
-    and the estimate's edge rise (`table_top.edge_rise`) and grip width (`table_top.grip_width`).
+    and the estimate's edge rise (`table_top.edge_rise`), grip width (`table_top.grip_width`), grip
+    axis (3) and grip reach (`table_top.grip_reach`).
     """
 
-    SIZE = 28
+    SIZE = 32
 
     estimate: table_top.TableTopEstimate | None
     spread: table_top.Spread | None
@@ -51,6 +52,9 @@ class TableTopVector:
                                       [e.height]])
             v[17] = e.cells
             v[26], v[27] = e.edge_rise, e.grip_width
+            if e.grip_axis is not None:
+                v[28:31] = e.grip_axis
+            v[31] = e.grip_reach
         v[18], v[19] = float(self.clipped), float(self.views)
         if self.spread is not None:
             v[20], v[21], v[22:25] = self.spread.centre, self.spread.axis_deg, self.spread.extents
@@ -65,7 +69,8 @@ class TableTopVector:
             estimate = table_top.TableTopEstimate(
                 centre=v[1:4].copy(), principal_axis=v[4:7].copy(), sides=v[7:10].copy(),
                 extents_axis=v[10:13].copy(), extents_sides=v[13:16].copy(), height=float(v[16]),
-                cells=int(v[17]), edge_rise=float(v[26]), grip_width=float(v[27]))
+                cells=int(v[17]), edge_rise=float(v[26]), grip_width=float(v[27]),
+                grip_axis=v[28:31].copy() if np.all(np.isfinite(v[28:31])) else None, grip_reach=float(v[31]))
         spread = None if not math.isfinite(v[20]) else table_top.Spread(float(v[20]), float(v[21]), v[22:25].copy())
         return cls(estimate, spread, bool(v[18] > 0.5), int(v[19]), float(v[25]))
 

@@ -65,8 +65,10 @@ class ObjectEstimate:
             and how sure it is: {"views", "cells", "clipped", "uncertainty": {"centre" (m),
             "axis_deg", "extents" (m, 3)}, "silhouettes": the silhouettes' own centre, principal
             axis, axes and extents, which it replaced; "table_z": the table's height, m, the height
-            map's reference plane, which the grasps take as the table}; None without it (and left out
-            of `to_dict`).
+            map's reference plane, which the grasps take as the table; "grip_axis" and "grip_reach":
+            how far the footprint reaches either way across that horizontal direction from the centre
+            where fingers close there (`table_top.grip_reach`; None and NaN where not measured), which
+            the flower grasp lands outside of}; None without it (and left out of `to_dict`).
         exploration: what the exploration was and cost (`primitives.exploration_cost`): {"kind" ("full":
             the paper's exploration; "confirmed" or "fallback": the minimal one's hypothesis confirmed,
             or not and the full exploration ran after it), "time_s", "path_m", "path_rad", "images",
@@ -135,10 +137,13 @@ class ObjectEstimate:
 
         if self.problem():
             raise ValueError(f"no estimate: {self.problem()}")
-        table_z = None if self.table_top is None else self.table_top.get("table_z")
+        top = self.table_top or {}
+        table_z, grip_axis = top.get("table_z"), top.get("grip_axis")
         return GraspEstimate(center=np.array(self.centre), R_WB=np.array(self.axes), size=np.array(self.extents),
                              principal_axis=None if self.principal_axis is None else np.array(self.principal_axis),
-                             source="camera", table_z=None if table_z is None else float(table_z))
+                             source="camera", table_z=None if table_z is None else float(table_z),
+                             grip_axis=None if grip_axis is None else np.array(grip_axis, float),
+                             grip_reach=float(top.get("grip_reach", math.nan)))
 
     def to_dict(self) -> dict:
         """Plain data (lists, floats) for JSON."""
@@ -301,7 +306,9 @@ def with_table_top(estimate: ObjectEstimate, table_top, elongated: bool) -> Obje
                       "thin_round": table_top_thin_roundness(t), "thin_narrow": table_top_thin_narrowness(t)},
         evidence={**estimate.evidence, **flat_evidence},
         table_top={"views": table_top.views, "cells": t.cells, "clipped": table_top.clipped,
-                   "uncertainty": uncertainty, "silhouettes": silhouettes, "table_z": table_top.table_height})
+                   "uncertainty": uncertainty, "silhouettes": silhouettes, "table_z": table_top.table_height,
+                   "grip_axis": None if t.grip_axis is None else np.asarray(t.grip_axis, float).copy(),
+                   "grip_reach": float(t.grip_reach)})
 
 
 class ObjectEstimator(LeafSystem):

@@ -235,8 +235,12 @@ class TableTopEstimate:
             half the height), m: the vertical centre's model uncertainty.
         edge_rise: how much the map rises just inside the footprint's edge (`edge_rise`), m: about 0
             for vertical sides (a box, a mug, a polycube), a centimetre for a round solid's.
-        grip_width: the footprint's width across the principal axis where the box grasp's fingers
-            close (`grip_width`), m.
+        grip_width: the footprint's width across `grip_axis` where the box grasp's fingers close
+            (`grip_width`), m.
+        grip_axis: the horizontal unit direction the grip is measured along: the principal axis, or
+            the footprint's sides where the principal axis stands within 30° of the vertical.
+        grip_reach: how far the footprint reaches across `grip_axis` from the centre, either way, in
+            the same band (`grip_reach`), m.
     """
 
     centre: np.ndarray
@@ -249,6 +253,8 @@ class TableTopEstimate:
     centre_bracket: float = 0.0
     edge_rise: float = math.nan
     grip_width: float = math.nan
+    grip_axis: np.ndarray | None = None
+    grip_reach: float = math.nan
 
 
 # How far inside the footprint's edge the edge rise looks, in cells (3 mm: 6 mm in).
@@ -281,6 +287,21 @@ def edge_rise(heights: np.ndarray, reach: int = EDGE_REACH) -> float:
 GRIP_BAND = 0.0365  # m
 
 
+def grip_offsets(xy: np.ndarray, centre_xy, axis, band: float = GRIP_BAND) -> np.ndarray | None:
+    """The signed distances (m) across the horizontal `axis` from `centre_xy` of the occupied cells'
+    centres (`xy`, N × 2, m) that lie within `band` of it along the axis: where fingers closing across
+    the axis at the centre meet the footprint. None without such a cell or a horizontal axis."""
+    axis = np.asarray(axis, float)[:2]
+    if np.linalg.norm(axis) < 1e-9 or len(xy) == 0:
+        return None
+    axis = axis / np.linalg.norm(axis)
+    d = np.asarray(xy, float) - np.asarray(centre_xy, float)[:2]
+    near = np.abs(d @ axis) <= band
+    if not np.any(near):
+        return None
+    return d[near] @ np.array([-axis[1], axis[0]])
+
+
 def grip_width(xy: np.ndarray, centre_xy, axis, band: float = GRIP_BAND) -> float:
     """The footprint's width across the horizontal `axis` among the occupied cells (centres `xy`, N × 2,
     m) within `band` of `centre_xy` along it, m: the span of their centres (an edge lies anywhere in its
@@ -290,15 +311,21 @@ def grip_width(xy: np.ndarray, centre_xy, axis, band: float = GRIP_BAND) -> floa
     It is the width the box grasp's fingers meet when they close across the axis at the centre: a
     hammer's handle (2-3 cm), not its head's length, which the footprint's own spans give
     (`primitives.narrow`)."""
-    axis = np.asarray(axis, float)[:2]
-    if np.linalg.norm(axis) < 1e-9 or len(xy) == 0:
-        return math.nan
-    axis = axis / np.linalg.norm(axis)
-    d = np.asarray(xy, float) - np.asarray(centre_xy, float)[:2]
-    near = np.abs(d @ axis) <= band
-    if not np.any(near):
-        return math.nan
-    return float(np.ptp(d[near] @ np.array([-axis[1], axis[0]])))
+    offsets = grip_offsets(xy, centre_xy, axis, band)
+    return math.nan if offsets is None else float(np.ptp(offsets))
+
+
+def grip_reach(xy: np.ndarray, centre_xy, axis, band: float = GRIP_BAND) -> float:
+    """How far the footprint reaches across the horizontal `axis` from `centre_xy` within `band` of it
+    along the axis, either way, m: the largest distance of an occupied cell's centre (`grip_offsets`;
+    unbiased as `grip_width` is). NaN without such a cell or a horizontal axis.
+
+    It is where fingertips closing across the axis at the centre must land outside of: on a hammer the
+    handle's half width (1-1.5 cm) rather than half its head's length; on a T lying on its bar, the
+    stem's far edge, which half the footprint's span places too near when the centroid is off the
+    footprint rectangle's middle (`grasps.precision_grasp`)."""
+    offsets = grip_offsets(xy, centre_xy, axis, band)
+    return math.nan if offsets is None else float(np.max(np.abs(offsets)))
 
 
 def min_area_rectangle(points_xy: np.ndarray) -> tuple[float, np.ndarray]:
@@ -358,6 +385,8 @@ def estimate(height_map: HeightMap, min_cells: int = 3) -> TableTopEstimate | No
     across = across / np.linalg.norm(across) if np.linalg.norm(across) > 1e-9 else np.cross(_UP, sides)
     axis_frame = (axis, across, np.cross(axis, across))
     side_frame = (sides, np.cross(_UP, sides), _UP)
+    grip_axis = np.append(axis[:2], 0.0) if np.linalg.norm(axis[:2]) > 0.5 else sides
+    grip_axis = grip_axis / np.linalg.norm(grip_axis)
     z_low, z_high = sorted((z_mean, top / 2.0))  # the solid's centroid, half the height (above the table)
     centre = np.array([centroid_xy[0], centroid_xy[1], height_map.table_height + 0.5 * (z_low + z_high)])
     return TableTopEstimate(
@@ -365,7 +394,8 @@ def estimate(height_map: HeightMap, min_cells: int = 3) -> TableTopEstimate | No
         extents_axis=_outline_spans(ends, axis_frame, xy, outline),
         extents_sides=_outline_spans(ends, side_frame, xy, outline), height=top, cells=len(h),
         centre_bracket=0.5 * (z_high - z_low), edge_rise=edge_rise(height_map.filled_heights()),
-        grip_width=grip_width(xy, centroid_xy, axis if np.linalg.norm(axis[:2]) > 0.5 else sides))
+        grip_width=grip_width(xy, centroid_xy, grip_axis), grip_axis=grip_axis,
+        grip_reach=grip_reach(xy, centroid_xy, grip_axis))
 
 
 def _outline_spans(ends: np.ndarray, directions, xy: np.ndarray, outline: np.ndarray | None) -> np.ndarray:
