@@ -82,15 +82,18 @@ def offset(estimate: ObjectEstimate, error: EstimateError) -> np.ndarray:
 
 
 def perturb_estimate(estimate: ObjectEstimate, error: EstimateError | None) -> ObjectEstimate:
-    """The estimate with `error` added: centre shifted, axes (and principal axis) yawed about the
-    vertical, extents scaled. No error (None or zero) returns `estimate` itself."""
+    """The estimate with `error` added: centre shifted, axes (and principal axis, and the grip's axis
+    where one was measured) yawed about the vertical, extents and the grip's reach scaled. No error
+    (None or zero) returns `estimate` itself."""
     if error is None or error.is_zero:
         return estimate
     R_yaw = RotationMatrix.MakeZRotation(error.yaw).matrix()
     axis = None if estimate.principal_axis is None else R_yaw @ np.asarray(estimate.principal_axis, float)
+    grip_axis = None if estimate.grip_axis is None else R_yaw @ np.asarray(estimate.grip_axis, float)
     return dataclasses.replace(estimate, center=np.asarray(estimate.center, float) + offset(estimate, error),
                                R_WB=R_yaw @ np.asarray(estimate.R_WB, float),
-                               size=np.asarray(estimate.size, float) * error.size_scale, principal_axis=axis)
+                               size=np.asarray(estimate.size, float) * error.size_scale, principal_axis=axis,
+                               grip_axis=grip_axis, grip_reach=estimate.grip_reach * error.size_scale)
 
 
 def perturb_pose(X_WO: RigidTransform, spec, error: EstimateError | None) -> RigidTransform:

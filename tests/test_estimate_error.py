@@ -1,6 +1,7 @@
 """A known error added to an object estimate (issue 15): pure functions, how each method takes it, the
 fingerprint and the command line."""
 
+import dataclasses
 import json
 import math
 
@@ -61,6 +62,11 @@ def test_yaw_turns_the_axes_about_the_vertical_and_size_scales_the_extents():
     np.testing.assert_allclose(turned.R_WB[:, 2], [0.0, 0.0, 1.0], atol=1e-15)
     np.testing.assert_array_equal(turned.center, estimate.center)  # about the vertical through the centre
     np.testing.assert_allclose(turned.size, 1.1 * estimate.size)
+    assert turned.grip_axis is None and math.isnan(turned.grip_reach)  # none measured, none made up
+    gripped = dataclasses.replace(estimate, grip_axis=np.array([1.0, 0.0, 0.0]), grip_reach=0.012)
+    turned = perturb_estimate(gripped, EstimateError(yaw=math.pi / 2, size_scale=1.1))
+    np.testing.assert_allclose(turned.grip_axis, [0.0, 1.0, 0.0], atol=1e-15)  # the grip turns with the axes
+    assert turned.grip_reach == pytest.approx(0.0132)
 
 
 def test_without_a_principal_axis_the_estimates_first_horizontal_axis_is_used():
