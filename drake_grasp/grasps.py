@@ -69,10 +69,10 @@ TABLE_CLEARANCE = 0.005
 # this hard along the palm normal while the hand closes (N: 6 N let the tips ride over 8-12 mm plates).
 FLOWER_MARGIN = 0.012
 FLOWER_SINK = 0.006
+FLOWER_FORCE = 15.0
 # The flower grasp lands outside the footprint's measured reach across its closing direction
 # (`ObjectEstimate.reach_across`) where the grip was measured along the fingers' row within this, rad.
 GRIP_ALIGNMENT = math.radians(15.0)
-FLOWER_FORCE = 15.0
 # The range of the preshape's proximal angle, rad: from where the tips still point down (below 40 deg
 # they would land flat) to where they nearly meet under the palm.
 FLOWER_PRESHAPE_RANGE = (math.radians(40.0), math.radians(85.0))
