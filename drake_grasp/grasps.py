@@ -203,17 +203,22 @@ class ObjectEstimate:
 
     def reach_across(self, along_W: np.ndarray) -> float:
         """How far from the centre, m, the object reaches across the horizontal direction `along_W`,
-        where fingers closing across it at the centre meet it: the measured `grip_reach` where the grip
-        was measured along (within GRIP_ALIGNMENT of) that direction, else half the box's extent across
-        it. On a hammer the first is the handle's half width and the second half the head's length; on
-        a T lying flat, with its centroid off its footprint rectangle's middle, the first is the nearer
-        to where the stem's far edge really is."""
+        where fingers closing across it at the centre meet it: half the box's extent across it, or the
+        measured `grip_reach` where that is less and the grip was measured along (within
+        GRIP_ALIGNMENT of) that direction. On a hammer the first is half the head's length and the
+        second the handle's half width.
+
+        Only ever less (behaviour 0.30.0): a reach beyond the box's half extent (an L or a T whose
+        centroid is off its footprint rectangle's middle, a claw hammer's claw in the band) widened
+        the landing by 1-7 degrees, and on flower seed 31 the trials it changed lost 4 and gained 1
+        (docs/design.md §5.4n)."""
         along = np.asarray(along_W, float)
         across = np.cross([0.0, 0.0, 1.0], along)
+        half = self.half_extent_along(across / max(np.linalg.norm(across), 1e-12))
         if self.grip_axis is not None and math.isfinite(self.grip_reach) and np.linalg.norm(across) > 1e-9:
             if abs(float(np.asarray(self.grip_axis, float) @ along)) >= math.cos(GRIP_ALIGNMENT) * np.linalg.norm(along):
-                return float(self.grip_reach)
-        return self.half_extent_along(across / max(np.linalg.norm(across), 1e-12))
+                return min(half, float(self.grip_reach))
+        return half
 
     @property
     def table_height(self) -> float:

@@ -139,6 +139,8 @@ def test_the_flower_grasp_lands_outside_the_measured_grip_not_the_footprint_box(
     assert gripped.reach_across(along) == pytest.approx(0.013)
     assert gripped.reach_across(-along) == pytest.approx(0.013)
     assert box.reach_across(along) == pytest.approx(0.045)
+    wide = dataclasses.replace(box, grip_reach=0.06)  # a reach beyond the box: the box's half extent
+    assert dataclasses.replace(wide, grip_axis=along).reach_across(along) == pytest.approx(0.045)
     turned = RotationMatrix.MakeZRotation(math.radians(20)).matrix() @ along
     assert gripped.reach_across(turned) == pytest.approx(box.half_extent_along(np.cross([0, 0, 1], turned)))
     angle = precision_grasp(gripped).finger_preshape[0]
