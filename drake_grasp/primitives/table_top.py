@@ -321,9 +321,9 @@ def grip_reach(xy: np.ndarray, centre_xy, axis, band: float = GRIP_BAND) -> floa
     unbiased as `grip_width` is). NaN without such a cell or a horizontal axis.
 
     It is where fingertips closing across the axis at the centre must land outside of: on a hammer the
-    handle's half width (1-1.5 cm) rather than half its head's length; on a T lying on its bar, the
-    stem's far edge, which half the footprint's span places too near when the centroid is off the
-    footprint rectangle's middle (`grasps.precision_grasp`)."""
+    handle's half width (1-1.5 cm) rather than half its head's length. Where the centroid is off the
+    footprint rectangle's middle (a T, an L) it can exceed half the footprint's span; the flower grasp
+    takes it only where it is the smaller (`grasps.ObjectEstimate.reach_across`)."""
     offsets = grip_offsets(xy, centre_xy, axis, band)
     return math.nan if offsets is None else float(np.max(np.abs(offsets)))
 
