@@ -7,10 +7,12 @@ One concept per module:
   an ObjectSpec built from them;
 * `catalogue`: the paper's nine objects and Fig. 4's primitive families;
 * importing files: `mesh_files` (read, repaired, joined, resting pose), `mujoco_msh` (MuJoCo's
-  binary .msh), `vtk_mesh` (Drake's tetrahedral .vtk, by its boundary), `repair` (a real mesh into
+  binary .msh), `vtk_mesh` (Drake's tetrahedral .vtk, by its boundary), `collada_mesh` (COLLADA
+  .dae, in its declared unit), `repair` (a real mesh into
   closed shells), `solid` (which shells are one object, and their union), `sizes` (the sizes the
   hand can grasp; a file outside them refused), `model_files` (SDFormat, URDF, MJCF),
-  `inertia_checks` (a file's inertial checked), `packages` (where ``package://`` URIs point),
+  `inertia_checks` (a file's inertial checked), `packages` (where ``package://`` and Gazebo's
+  ``model://`` URIs point),
   `names` (what a command line names, and the options object files take), `check`
   (`drake-grasp objects check`);
 * convex pieces for contact: `pieces` (decomposition, merging), `piece_budget` (at most 64 vertices
@@ -34,7 +36,7 @@ _PARTS = ("spec", "mass_properties", "catalogue", "names", "mesh_files", "pieces
 
 
 # Every module of the package (`from drake_grasp.objects import repair` imports it, as usual).
-_MODULES = _PARTS + ("cleaning", "inertia_checks", "mesh_zoo", "mujoco_msh", "near_primitives", "novel", "packages",
+_MODULES = _PARTS + ("cleaning", "collada_mesh", "inertia_checks", "mesh_zoo", "mujoco_msh", "near_primitives", "novel", "packages",
                      "piece_budget", "repair", "sizes", "solid", "vtk_mesh")
 
 

@@ -2,7 +2,7 @@
 split into convex pieces for contact and rested on a stable face.
 
 A mesh file (any format trimesh reads: OBJ, STL, PLY, OFF, glTF/GLB; MuJoCo's binary ``.msh``;
-Drake's tetrahedral ``.vtk``, by its boundary surface) is read as it stores its triangles (`--scale`,
+Drake's tetrahedral ``.vtk``, by its boundary surface; COLLADA ``.dae``, in the unit it declares) is read as it stores its triangles (`--scale`,
 glTF turned z up), repaired (:mod:`drake_grasp.objects.repair`), its shells joined into one rigid
 object (:mod:`drake_grasp.objects.solid`), checked for a size the hand can grasp
 (:mod:`drake_grasp.objects.sizes`), simplified if dense and decomposed into convex pieces
@@ -26,7 +26,7 @@ from pydrake.common.eigen_geometry import AngleAxis
 from pydrake.math import RollPitchYaw, RotationMatrix
 from scipy.spatial import ConvexHull, QhullError
 
-from drake_grasp.objects import mujoco_msh, repair, sizes, vtk_mesh
+from drake_grasp.objects import collada_mesh, mujoco_msh, repair, sizes, vtk_mesh
 from drake_grasp.objects.pieces import IMPORT_VERSION, _decompose
 from drake_grasp.objects.spec import (
     COACD_THRESHOLD, CONVEXITY_TOLERANCE, DEFAULT_DENSITY, DEFAULT_MAX_PIECES, MAX_FACES, MeshNote,
@@ -56,7 +56,8 @@ _Y_UP_SUFFIXES = (".gltf", ".glb")
 def read_triangles(path: Path, label: str) -> trimesh.Trimesh:
     """The triangles a mesh file stores, in its own units and frame: a MuJoCo ``.msh``
     (:mod:`drake_grasp.objects.mujoco_msh`), the boundary of Drake's tetrahedral ``.vtk``
-    (:mod:`drake_grasp.objects.vtk_mesh`), or any format trimesh reads. ObjectError (one line) for a
+    (:mod:`drake_grasp.objects.vtk_mesh`), or any format trimesh reads. A COLLADA ``.dae`` declares
+    its unit, and comes in metres (:mod:`drake_grasp.objects.collada_mesh`). ObjectError (one line) for a
     file that is missing, unreadable or damaged, has no triangles or has vertices that are not finite."""
     if not path.exists():
         raise ObjectError(f"{label}: file not found")
@@ -65,6 +66,8 @@ def read_triangles(path: Path, label: str) -> trimesh.Trimesh:
     suffix = path.suffix.lower()
     if suffix == ".msh":
         vertices, faces = mujoco_msh.read_msh(path.read_bytes(), label)
+    elif suffix == ".dae":
+        vertices, faces = collada_mesh.read_dae(path.read_bytes(), label)
     elif suffix == ".vtk":
         vertices, faces = vtk_mesh.boundary_surface(*vtk_mesh.read_vtk(path.read_bytes(), label))
     else:
@@ -141,11 +144,18 @@ def _cached_solid(mesh: trimesh.Trimesh, label: str, key: str, join_gap: float |
     return solid
 
 
+def _content_digest(path: Path) -> str:
+    """The key of a mesh file's cached solid and pieces: its bytes' SHA-256, and for COLLADA the
+    reader's version (since 0.31.0 its declared unit is applied: a solid cached before is not reused)."""
+    digest = hashlib.sha256(path.read_bytes()).hexdigest()
+    return digest + "|dae-unit" if path.suffix.lower() == ".dae" else digest
+
+
 def _load_checked_mesh(path: Path, label: str, scale: float, join_gap: float | None = None,
                        keep_largest: bool = False) -> trimesh.Trimesh:
     """:func:`_read_mesh`, then :func:`_solid_from_mesh`, cached by the file's content and the
     options (a model file's mesh geometry)."""
-    digest = hashlib.sha256(path.read_bytes()).hexdigest() if path.is_file() else ""
+    digest = _content_digest(path) if path.is_file() else ""
     key = hashlib.sha256(f"{digest}|{scale!r}|{join_gap!r}|{keep_largest}".encode()).hexdigest()[:24]
     return _cached_solid(_read_mesh(path, label, scale), label, key, join_gap, keep_largest)
 
@@ -301,7 +311,7 @@ def object_from_mesh(
         raise ObjectError(f"{label}: join gap must be a distance >= 0 (m), got {join_gap!r}")
     mesh = _read_mesh(path, label, scale)
     return object_from_triangles(
-        mesh, label, path.stem, hashlib.sha256(path.read_bytes()).hexdigest(), str(path.resolve()), mass=mass,
+        mesh, label, path.stem, _content_digest(path), str(path.resolve()), mass=mass,
         name=name, density=density, scale=scale, max_pieces=max_pieces, stable_pose=stable_pose,
         closest_primitive=closest_primitive, rgba=rgba, friction=friction, largest_component=largest_component,
         join_gap=join_gap)

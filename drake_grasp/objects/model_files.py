@@ -44,7 +44,8 @@ from drake_grasp.objects.mesh_files import (
 from drake_grasp.objects import packages, sizes
 from drake_grasp.objects.pieces import IMPORT_VERSION, _decompose
 from drake_grasp.objects.spec import (
-    DEFAULT_DENSITY, DEFAULT_MAX_PIECES, InertiaWarning, ObjectError, ObjectSpec, ShapePiece, YELLOW_PAPER_RGBA,
+    DEFAULT_DENSITY, DEFAULT_MAX_PIECES, InertiaWarning, ObjectError, ObjectSpec, ShapePiece, StaticModelNote,
+    YELLOW_PAPER_RGBA,
     _cached_hull_obj, _obj_text, _write_atomically, cache_dir,
 )
 from drake_grasp.objects.mass_properties import (
@@ -130,9 +131,12 @@ def non_finite_number(path: Path) -> str | None:
 # --- Meshes Drake's parser cannot read ----------------------------------------------------------
 
 DRAKE_MESH_SUFFIXES = (".obj", ".vtk", ".gltf")  # what Drake's parser takes as mesh geometry
-CONVERTED_VERSION = 1  # in the converted OBJs' names: a change to the conversion makes new files
+CONVERTED_VERSION = 2  # in the converted OBJs' names: a change to the conversion makes new files
 _URDF_FILENAME = re.compile(r"""(\bfilename\s*=\s*)(["'])(.*?)\2""", re.DOTALL)
 _SDF_URI = re.compile(r"(<uri\s*>)([^<]*)(</uri\s*>)")
+_SDF_STATIC = re.compile(r"(<static\s*>)\s*(?:true|1)\s*(</static\s*>)", re.IGNORECASE)
+_SDF_SCRIPT = re.compile(r"<script\b[^>]*>.*?</script\s*>", re.DOTALL)  # a material's OGRE script (Gazebo's)
+
 
 
 def _reference_path(reference: str, base: Path, package_map, local: dict, label: str) -> Path:
@@ -157,11 +161,11 @@ def _reference_path(reference: str, base: Path, package_map, local: dict, label:
 
 def _converted_obj(mesh_path: Path, label: str) -> Path:
     """An OBJ in the cache holding the triangles of a mesh file Drake cannot read (STL, PLY, GLB,
-    MuJoCo .msh, DAE if pycollada is installed: what :func:`drake_grasp.objects.mesh_files.read_triangles`
-    reads), in the file's own units (the model's ``scale`` still applies) and, for GLB, turned z up
-    as Drake turns a glTF. Named by the file's content, so a second load reads it again without
-    converting; written atomically. ObjectError (one line, from read_triangles) for a file that is
-    missing or unreadable."""
+    MuJoCo .msh, COLLADA .dae: what :func:`drake_grasp.objects.mesh_files.read_triangles` reads), in
+    the file's own units (a COLLADA file's declared unit applied, as Gazebo applies it; the model's
+    ``scale`` still applies) and, for GLB, turned z up as Drake turns a glTF. Named by the file's
+    content, so a second load reads it again without converting; written atomically. ObjectError
+    (one line, from read_triangles) for a file that is missing or unreadable."""
     if not mesh_path.is_file():
         raise ObjectError(f"{label}: file not found")
     suffix = mesh_path.suffix.lower()
@@ -178,8 +182,12 @@ def _converted_obj(mesh_path: Path, label: str) -> Path:
 
 def drake_readable_model(path: Path, label: str, package_map, local: dict) -> str | None:
     """The text of an SDFormat or URDF file with each mesh Drake cannot read converted to an OBJ
-    (:func:`_converted_obj`) and named by it; None if the file names no such mesh (it is then
-    parsed as it is) or is not XML (the parser says why).
+    (:func:`_converted_obj`) and named by it, and an SDFormat model that is static (Gazebo holds it
+    fixed: osrf/gazebo_models' ``hammer``) made free, with a :class:`StaticModelNote`: an object to
+    grasp is one the hand can lift. A visual material's ``<script>`` (Gazebo's OGRE material, which
+    Drake ignores with a warning on every load, and whose visual is replaced by ours) is left out.
+    None if the file needs none of this (it is then parsed as it is) or is not XML (the parser says
+    why).
 
     The text is parsed from a string, not from its folder, so every other path it gives is made an
     absolute ``file://`` URI (Drake refuses a bare path in a string); ``package://`` URIs are kept
@@ -196,7 +204,10 @@ def drake_readable_model(path: Path, label: str, package_map, local: dict) -> st
               for mesh in root.iter("mesh")}
     unreadable = {reference for reference in meshes
                   if reference and Path(reference).suffix.lower() not in DRAKE_MESH_SUFFIXES}
-    if not unreadable:
+    static = root.tag == "sdf" and any((model.findtext("static") or "").strip().lower() in ("true", "1")
+                                       for model in root.findall("model"))
+    scripts = root.tag == "sdf" and root.find(".//material/script") is not None
+    if not unreadable and not static and not scripts:
         return None
     base = path.resolve().parent
 
@@ -218,7 +229,14 @@ def drake_readable_model(path: Path, label: str, package_map, local: dict) -> st
         return f"{start}{escape(rewritten(html.unescape(value).strip()))}{end}"
 
     text = path.read_text(errors="replace")
-    return _URDF_FILENAME.sub(attribute, text) if root.tag == "robot" else _SDF_URI.sub(element, text)
+    if root.tag == "robot":
+        return _URDF_FILENAME.sub(attribute, text)
+    if static:
+        warnings.warn(f"{label}: the model is static in its file (Gazebo holds it fixed); loaded as a free body",
+                      StaticModelNote, stacklevel=3)
+        text = _SDF_STATIC.sub(r"\g<1>false\g<2>", text)
+    text = _SDF_SCRIPT.sub("", text)
+    return _SDF_URI.sub(element, text)
 
 
 def object_from_sdf(

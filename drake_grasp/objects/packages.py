@@ -15,8 +15,18 @@ parser's PackageMap; a user of this package names the SDF, so:
   first use, which fails offline): a local package of the same name replaces it (PackageMap.Remove,
   then AddPackageXml), so a local checkout is used instead of a download, and it never collides.
 
-A URI whose package is known neither locally nor remotely, or a remote package that cannot be
-downloaded, is an ObjectError that says where a package.xml was looked for and how to give one.
+Gazebo's model files name theirs by model instead: osrf/gazebo_models' ``coke_can/model.sdf`` uses
+``model://coke_can/meshes/coke_can.dae``, which Gazebo resolves against the folders on its model path
+(``GAZEBO_MODEL_PATH``; ``GZ_SIM_RESOURCE_PATH`` for Gazebo Sim): ``model://NAME`` is the folder NAME in
+one of them. Drake's parser resolves ``model://`` URIs through the same PackageMap as ``package://``
+ones, so each such NAME is registered as a package whose folder is (:func:`gazebo_models`), first
+found first: under a ``--package-path`` DIR (DIR itself if it is named NAME, else DIR/NAME); the
+model file's own folder if it is named NAME, or a folder NAME beside it, there or in the
+PACKAGE_SEARCH_LEVELS folders above (a checkout of a model collection needs nothing more); a folder
+NAME on the model path variables.
+
+A URI whose package or model is known neither locally nor remotely, or a remote package that cannot
+be downloaded, is an ObjectError that says where it was looked for and how to give it.
 """
 
 from __future__ import annotations
@@ -32,6 +42,10 @@ from drake_grasp.objects.spec import ObjectError
 
 PACKAGE_SEARCH_LEVELS = 8  # folders above a model file searched for package.xml (bounded: never the whole disk)
 _URI = re.compile(r"package://([A-Za-z0-9_.\-]+)/")
+_MODEL_URI = re.compile(r"model://([A-Za-z0-9_.\-]+)/")
+_MESH_URI = re.compile(r"<mesh\b[^>]*>.*?<uri\s*>([^<]*)</uri\s*>", re.DOTALL)
+# Gazebo's model path variables (Gazebo Classic's, Gazebo Sim's and its former name), searched in this order.
+GAZEBO_PATH_VARIABLES = ("GAZEBO_MODEL_PATH", "GZ_SIM_RESOURCE_PATH", "IGN_GAZEBO_RESOURCE_PATH")
 
 
 def package_name(package_xml: Path) -> str:
@@ -88,11 +102,47 @@ def referenced_packages(text: str) -> list[str]:
     return list(dict.fromkeys(_URI.findall(text)))
 
 
+def referenced_models(text: str, meshes_only: bool = False) -> list[str]:
+    """The model names a model file's ``model://NAME/...`` URIs use (Gazebo's), in order of first use;
+    with `meshes_only`, those of its mesh geometries' ``<uri>`` only: Drake reads no other (it ignores
+    a visual's material script, which Gazebo's models often take from another model:
+    ``model://arm_part/materials/scripts`` in ``gear_part``)."""
+    if meshes_only:
+        text = " ".join(_MESH_URI.findall(text))
+    return list(dict.fromkeys(_MODEL_URI.findall(text)))
+
+
+def gazebo_models(model_file: Path, names, package_path=(), environ=None) -> dict[str, Path]:
+    """{name: folder} of the Gazebo models `names` (``model://NAME``) found as the module docstring
+    says: under `package_path`, beside or above `model_file` (PACKAGE_SEARCH_LEVELS), then on the
+    model path variables of `environ` (default os.environ). A name found nowhere is left out."""
+    environ = os.environ if environ is None else environ
+    near, folder = [], Path(model_file).resolve().parent
+    for _ in range(PACKAGE_SEARCH_LEVELS + 1):
+        near.append(folder)
+        if folder.parent == folder:
+            break
+        folder = folder.parent
+    on_path = [Path(entry).expanduser() for variable in GAZEBO_PATH_VARIABLES
+               for entry in environ.get(variable, "").split(os.pathsep) if entry]
+    roots = [Path(d).expanduser() for d in package_path] + near + on_path
+    found: dict[str, Path] = {}
+    for name in names:
+        for root in roots:
+            candidate = root if root.name == name else root / name
+            if candidate.is_dir():
+                found[name] = candidate.resolve()
+                break
+    return found
+
+
 def register_packages(package_map, model_file: Path, package_path=()) -> dict[str, Path]:
     """Registers the local packages a model file can use with a Drake PackageMap: those found above
     it (:func:`packages_above`), then those of `package_path` (each :func:`packages_under`; given
-    last, they win). A name the map already has (Drake's remote ``drake_models``) is replaced.
-    Returns {name: package.xml} of what was registered."""
+    last, they win). A name the map already has (Drake's remote ``drake_models``) is replaced. Then
+    the Gazebo models its ``model://`` URIs name (:func:`gazebo_models`), each as a package of that
+    name rooted at its folder, unless a package.xml of that name was found. Returns {name: package.xml
+    or model folder} of what was registered."""
     local = packages_above(model_file)
     for directory in package_path:
         local.update(packages_under(Path(directory)))
@@ -100,16 +150,31 @@ def register_packages(package_map, model_file: Path, package_path=()) -> dict[st
         if package_map.Contains(name):
             package_map.Remove(name)
         package_map.AddPackageXml(str(xml))
+    try:
+        text = Path(model_file).read_text(errors="replace")
+    except OSError:
+        return local
+    wanted = [name for name in referenced_models(text) if name not in local]
+    for name, folder in gazebo_models(model_file, wanted, package_path).items():
+        if package_map.Contains(name):
+            package_map.Remove(name)
+        package_map.Add(name, str(folder))
+        local[name] = folder
     return local
 
 
 def missing_package_problem(text: str, package_map, local: dict[str, Path], model_file: Path) -> str | None:
     """Why the model file's URIs cannot resolve before parsing it (a package Drake knows neither
-    locally nor remotely), or None."""
+    locally nor remotely, a Gazebo model found nowhere), or None."""
     for name in referenced_packages(text):
         if name not in local and not package_map.Contains(name):
             return (f"package://{name}/ is not known: no package.xml named {name!r} in the file's folder or the "
                     f"{PACKAGE_SEARCH_LEVELS} above it; give its folder with --package-path DIR")
+    for name in referenced_models(text, meshes_only=True):
+        if name not in local and not package_map.Contains(name):
+            return (f"model://{name}/ is not known: no folder named {name!r} beside the file or in the "
+                    f"{PACKAGE_SEARCH_LEVELS} folders above it, nor on GAZEBO_MODEL_PATH; give the folder that "
+                    f"holds it with --package-path DIR")
     return None
 
 

@@ -105,6 +105,10 @@ class MeshNote(UserWarning):
     """A one-line note on what was done to a user's mesh (simplified, decomposed: slow steps)."""
 
 
+class StaticModelNote(MeshNote):
+    """A model file's model is static (its simulator holds it fixed); it was loaded as a free body."""
+
+
 class InertiaWarning(UserWarning):
     """A model file's inertia was implausible and was replaced by the collision geometry's."""
 
