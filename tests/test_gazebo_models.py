@@ -138,3 +138,17 @@ def test_a_static_model_is_loaded_free_with_a_note(tmp_path):
     static = [note for note in notes if "static" in note]
     assert static == ["note: the model is static in its file (Gazebo holds it fixed); loaded as a free body"]
     assert sorted(spec.extents) == pytest.approx([0.03, 0.03, 0.2], abs=1e-3)
+
+
+def test_a_gazebo_model_folder_names_its_sdf_and_a_folder_without_one_is_one_line(tmp_path, capsys):
+    path = _gazebo_model(tmp_path, "tin_can", "model://tin_can/meshes/can.dae")
+    (tmp_path / "tin_can" / "meshes" / "can.dae").write_text(_collada(CAN_MM, unit=0.001))
+    assert cli.main(["objects", "check", str(tmp_path / "tin_can")]) == 0
+    assert capsys.readouterr().out.startswith(f"{path}: accepted")  # the folder named its model.sdf
+    (tmp_path / "tin_can" / "model.config").write_text("<model><name>tin_can</name></model>")
+    assert cli.main(["trial", "--object", str(tmp_path / "tin_can")]) == 2
+    (line,) = capsys.readouterr().err.strip().splitlines()
+    assert line.endswith("tin_can: model.config names no <sdf> file")
+    assert cli.main(["objects", "check", str(tmp_path)]) == 2
+    (line,) = capsys.readouterr().err.strip().splitlines()
+    assert "a folder; give an object file, or a Gazebo model folder" in line

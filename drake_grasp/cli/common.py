@@ -46,6 +46,31 @@ def mesh_option_args(args) -> dict:
             "package_path": tuple(getattr(args, "package_path", None) or ())}
 
 
+def object_argument(text: str) -> str:
+    """An object as a command line names it (argparse's ``type`` of --object, --objects' entries and
+    `objects check`'s FILE): a Gazebo model folder (one with a model.config) becomes the path of its
+    SDF file (`objects.names.gazebo_model_file`), so that every record and option names the file;
+    anything else, and a folder whose model.config names no SDF (the loader then refuses it in one
+    line, exit 2), is returned as given."""
+    from pathlib import Path
+
+    from drake_grasp.objects import ObjectError
+    from drake_grasp.objects.names import gazebo_model_file
+
+    path = Path(text.strip()).expanduser()
+    if not path.is_dir() or not (path / "model.config").is_file():
+        return text
+    try:
+        return str(gazebo_model_file(path, text.strip()))
+    except ObjectError:
+        return text
+
+
+def object_list_argument(text: str) -> str:
+    """--objects' comma-separated list, each entry as `object_argument` gives it."""
+    return ",".join(object_argument(entry.strip()) if entry.strip() else entry for entry in text.split(","))
+
+
 def resolve_object_arg(args):
     """The --object of a single-run command, with its object-file options."""
     from drake_grasp.objects import resolve_user_object

@@ -55,7 +55,7 @@ def _run_objects_generate(args) -> int:
 
 def add_objects_check(objects_sub) -> None:
     """`drake-grasp objects check`."""
-    from drake_grasp.cli.common import add_mesh_options
+    from drake_grasp.cli.common import add_mesh_options, object_argument
 
     check = objects_sub.add_parser(
         "check",
@@ -65,7 +65,7 @@ def add_objects_check(objects_sub) -> None:
         "units, volume, mass and where the inertia came from, convex pieces, resting pose, load time. "
         "Exit code 0 for an accepted file, 2 (one line saying why) for a refused one.",
     )
-    check.add_argument("file", metavar="FILE", help="the object file (or a catalogue name or primitive)")
+    check.add_argument("file", metavar="FILE", type=object_argument, help="the object file (or a catalogue name or primitive)")
     add_mesh_options(check)
     check.add_argument("--replay", metavar="HTML", help="write a browser view of the convex pieces over the visual mesh")
     check.add_argument("--json", action="store_true", help="print one JSON object instead of lines")

@@ -10,8 +10,8 @@ import math
 import pathlib
 
 from drake_grasp.cli.common import (UsageError, add_common, add_mesh_options, check_out_dir, check_planner_args,
-                                    check_seed, emit, jsonable, mesh_option_args, resolve_object_arg, save_record,
-                                    single_run_inputs)
+                                    check_seed, emit, jsonable, mesh_option_args, object_argument, resolve_object_arg,
+                                    save_record, single_run_inputs)
 from drake_grasp.robot.hand import ComplianceMode
 
 # The compliant grasps' names users may give --grasp besides the records' own: the flower grasp is the
@@ -29,7 +29,7 @@ def add_demo(sub) -> None:
         "object was held and how much it slipped in the hand.",
     )
     add_mesh_options(demo)
-    demo.add_argument("--object", required=True, metavar="NAME|PATH",
+    demo.add_argument("--object", required=True, metavar="NAME|PATH", type=object_argument,
                       help="a catalogue object (e.g. soccer_ball, bottle_case), a primitive "
                       "(sphere:0.12, cube:0.08, cylinder:0.1x0.3) or a mesh file (OBJ, STL, PLY)")
     demo.add_argument("--mode", choices=[m.name.lower() for m in ComplianceMode],
@@ -50,7 +50,7 @@ def add_trial(sub) -> None:
         "moved < 1 cm and 10 deg in the hand during the hold).",
     )
     add_mesh_options(trial)
-    trial.add_argument("--object", required=True, metavar="NAME|PATH",
+    trial.add_argument("--object", required=True, metavar="NAME|PATH", type=object_argument,
                        help="a catalogue object, a primitive (sphere:0.12, cube:0.08, cylinder:0.1x0.3) or a mesh file")
     trial.add_argument("--method", choices=["compliant", "eigengrasp"], default="compliant",
                        help="compliant (default): explore with the wrist camera, pick the grasp of the most "
@@ -98,7 +98,7 @@ def add_plan_eigengrasp(sub) -> None:
         "object frame, finger posture, energy, eps) and the planning time.",
     )
     add_mesh_options(eigengrasp)
-    eigengrasp.add_argument("--object", required=True, metavar="NAME|PATH",
+    eigengrasp.add_argument("--object", required=True, metavar="NAME|PATH", type=object_argument,
                             help="a catalogue object, a primitive (sphere:0.12, cube:0.08, cylinder:0.1x0.3) or a mesh file")
     eigengrasp.add_argument("--steps", default="70000", metavar="N",
                             help="GraspIt!'s step limit; its counter starts at 30000, so the default "
@@ -123,7 +123,7 @@ def add_resemble(sub) -> None:
         "three resemblances. The object is placed with trial SEED's variation (docs/design.md §4.7).",
     )
     add_mesh_options(resemble)
-    resemble.add_argument("--object", required=True, metavar="NAME|PATH",
+    resemble.add_argument("--object", required=True, metavar="NAME|PATH", type=object_argument,
                           help="a catalogue object, a primitive (sphere:0.12, cube:0.08, cylinder:0.1x0.3) or a mesh file")
     resemble.add_argument("--nominal", action="store_true", help="place the object without the seed's variation")
     add_common(resemble, scenario="object")

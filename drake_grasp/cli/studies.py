@@ -10,7 +10,8 @@ holds the lock of, and prints a summary (or one JSON object with --json).
 import json
 import time
 
-from drake_grasp.cli.common import UsageError, add_common, add_executor_args, check_out_dir, check_planner_args, jsonable
+from drake_grasp.cli.common import (UsageError, add_common, add_executor_args, check_out_dir, check_planner_args, jsonable,
+                                    object_list_argument)
 from drake_grasp.cli.sweeps import check_sweep_args, objects_arg, scenario_args
 
 
@@ -28,7 +29,7 @@ def add_capture(sub) -> None:
     capture.add_argument("--quick", action="store_true",
                          help="soccer ball and sponge, the grasp each resembles, the position plane, a 2 x 2 "
                          "grid refined once (about 10 minutes on 2 cores)")
-    capture.add_argument("--objects", metavar="NAME|PATH,...",
+    capture.add_argument("--objects", metavar="NAME|PATH,...", type=object_list_argument,
                          help="comma-separated objects (default: the paper's nine)")
     capture.add_argument("--grasps", metavar="GRASP,...",
                          help="compliant grasps to map: spherical, cylindrical, box, or chosen (the grasp of the "
@@ -166,7 +167,7 @@ def add_sensitivity(sub) -> None:
         "which of the paper's claims hold or flip) and sensitivity.png.",
     )
     study.add_argument("--quick", action="store_true", help="3 objects (apple, banana, soccer ball), 1 trial each")
-    study.add_argument("--objects", metavar="NAME|PATH,...", help="comma-separated objects (default: the paper's nine)")
+    study.add_argument("--objects", metavar="NAME|PATH,...", type=object_list_argument, help="comma-separated objects (default: the paper's nine)")
     study.add_argument("--trials", type=int, help="trials per object and condition (default 4; quick 1)")
     study.add_argument("--conditions", metavar="NAME,...", help="conditions to run (default: all; see --list)")
     study.add_argument("--noise-sigma", type=float, help="image noise of the noisy colour condition, 8-bit counts "

@@ -12,7 +12,8 @@ import sys
 import time
 
 from drake_grasp.cli.common import (UsageError, add_common, add_executor_args, add_mesh_options, check_out_dir,
-                                    check_planner_args, check_seed, jsonable, load_scenario_arg, mesh_option_args)
+                                    check_planner_args, check_seed, jsonable, load_scenario_arg, mesh_option_args,
+                                    object_list_argument)
 
 
 def add_fig4(sub) -> None:
@@ -48,7 +49,7 @@ def add_fig6(sub) -> None:
     fig6.add_argument("--quick", action="store_true", help="4 objects x 3 grasps x 2 trials")
     fig6.add_argument("--trials", type=int, help="trials per object and grasp (default 10)")
     add_mesh_options(fig6)
-    fig6.add_argument("--objects", metavar="NAME|PATH,...",
+    fig6.add_argument("--objects", metavar="NAME|PATH,...", type=object_list_argument,
                       help="comma-separated objects instead of the paper's nine (catalogue names, primitives "
                       "such as sphere:0.12, or mesh files): the same study on your own objects")
     add_executor_args(fig6)
@@ -71,7 +72,7 @@ def add_fig7(sub) -> None:
     fig7.add_argument("--quick", action="store_true", help="2 objects, 2 trials per grasp")
     fig7.add_argument("--trials", type=int, help="executions of each planned grasp (default 10)")
     add_mesh_options(fig7)
-    fig7.add_argument("--objects", metavar="NAME|PATH,...",
+    fig7.add_argument("--objects", metavar="NAME|PATH,...", type=object_list_argument,
                       help="comma-separated objects instead of the paper's six (catalogue names, primitives "
                       "or mesh files): compare the two methods on your own objects")
     add_executor_args(fig7)

@@ -36,7 +36,7 @@ def resolve_object(name_or_path: str | os.PathLike, **kw) -> ObjectSpec:
             length default CYLINDER_FAMILY_LENGTH: lying along x), ``box:0.05x0.025x0.01`` (length
             along x, width, height; resting on a face); or the path of a mesh (any format trimesh
             reads, a MuJoCo ``.msh``, Drake's tetrahedral ``.vtk``) or an ``.sdf``/``.urdf``/MJCF
-            model file.
+            model file, or a Gazebo model folder (its SDF file: :func:`gazebo_model_file`).
         **kw: Passed on to :func:`paper_object`, :func:`sphere_object` (etc.),
             :func:`object_from_mesh` or :func:`object_from_sdf`.
 
@@ -149,9 +149,38 @@ def options_for(name_or_path: str, **options) -> dict:
 MODEL_SUFFIXES = (".sdf", ".urdf", ".xml", ".mjcf")  # model files (drake_grasp.objects.model_files)
 
 
+def gazebo_model_file(folder: Path, label: str | None = None) -> Path:
+    """The SDFormat file of a Gazebo model folder: the one its ``model.config`` names in an ``<sdf>``
+    element (of several, the highest ``version``), as Gazebo picks it. ObjectError (one line) for a
+    folder without a model.config, one that is not XML or names no SDF, or an SDF that is missing."""
+    import xml.etree.ElementTree as ElementTree
+
+    label = label or os.fspath(folder)
+    config = Path(folder) / "model.config"
+    if not config.is_file():
+        raise ObjectError(f"{label}: a folder; give an object file, or a Gazebo model folder (one with a model.config)")
+    try:
+        entries = ElementTree.parse(config).getroot().findall("sdf")
+    except (ElementTree.ParseError, OSError) as error:
+        raise ObjectError(f"{label}: model.config is not readable XML ({' '.join(str(error).split())})") from None
+
+    def version(entry) -> tuple:
+        return tuple(int(part) if part.isdigit() else 0 for part in (entry.get("version") or "0").split("."))
+
+    named = [entry for entry in entries if (entry.text or "").strip()]
+    if not named:
+        raise ObjectError(f"{label}: model.config names no <sdf> file")
+    sdf = Path(folder) / max(named, key=version).text.strip()
+    if not sdf.is_file():
+        raise ObjectError(f"{label}: model.config names {sdf.name}, which is not there")
+    return sdf
+
+
 def _object_from_file(path: Path, label: str, kw: dict) -> ObjectSpec:
     if not path.exists():
         raise ObjectError(f"{label}: file not found")
+    if path.is_dir():  # a Gazebo model folder: its SDF file
+        path = gazebo_model_file(path, label)
     if path.suffix.lower() in MODEL_SUFFIXES:
         from drake_grasp.objects import model_files
 
