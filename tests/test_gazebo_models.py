@@ -114,7 +114,7 @@ def test_a_gazebo_model_with_model_uris_and_a_collada_mesh_loads_at_its_size(tmp
     assert spec.mass == pytest.approx(0.39)
     assert sorted(spec.extents) == pytest.approx(sorted(np.array(CAN_MM) / 1000), abs=1e-3)
     assert not [note for note in notes if "static" in note]
-    # Its OGRE material script, which Drake ignores, is left out before parsing: no warning on each load.
+    # Its OGRE material script, which Drake ignores, brings no warning on each load.
     assert not [r for r in caplog.records if "material" in r.getMessage()]
 
 

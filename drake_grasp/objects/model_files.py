@@ -22,8 +22,10 @@ goes through the same repair and joining as a mesh file (:mod:`drake_grasp.objec
 
 from __future__ import annotations
 
+import contextlib
 import hashlib
 import html
+import logging
 import math
 import os
 import re
@@ -135,7 +137,6 @@ CONVERTED_VERSION = 2  # in the converted OBJs' names: a change to the conversio
 _URDF_FILENAME = re.compile(r"""(\bfilename\s*=\s*)(["'])(.*?)\2""", re.DOTALL)
 _SDF_URI = re.compile(r"(<uri\s*>)([^<]*)(</uri\s*>)")
 _SDF_STATIC = re.compile(r"(<static\s*>)\s*(?:true|1)\s*(</static\s*>)", re.IGNORECASE)
-_SDF_SCRIPT = re.compile(r"<script\b[^>]*>.*?</script\s*>", re.DOTALL)  # a material's OGRE script (Gazebo's)
 
 
 
@@ -184,10 +185,8 @@ def drake_readable_model(path: Path, label: str, package_map, local: dict) -> st
     """The text of an SDFormat or URDF file with each mesh Drake cannot read converted to an OBJ
     (:func:`_converted_obj`) and named by it, and an SDFormat model that is static (Gazebo holds it
     fixed: osrf/gazebo_models' ``hammer``) made free, with a :class:`StaticModelNote`: an object to
-    grasp is one the hand can lift. A visual material's ``<script>`` (Gazebo's OGRE material, which
-    Drake ignores with a warning on every load, and whose visual is replaced by ours) is left out.
-    None if the file needs none of this (it is then parsed as it is) or is not XML (the parser says
-    why).
+    grasp is one the hand can lift. None if the file needs neither (it is then parsed as it is) or is
+    not XML (the parser says why).
 
     The text is parsed from a string, not from its folder, so every other path it gives is made an
     absolute ``file://`` URI (Drake refuses a bare path in a string); ``package://`` URIs are kept
@@ -206,8 +205,7 @@ def drake_readable_model(path: Path, label: str, package_map, local: dict) -> st
                   if reference and Path(reference).suffix.lower() not in DRAKE_MESH_SUFFIXES}
     static = root.tag == "sdf" and any((model.findtext("static") or "").strip().lower() in ("true", "1")
                                        for model in root.findall("model"))
-    scripts = root.tag == "sdf" and root.find(".//material/script") is not None
-    if not unreadable and not static and not scripts:
+    if not unreadable and not static:
         return None
     base = path.resolve().parent
 
@@ -235,8 +233,29 @@ def drake_readable_model(path: Path, label: str, package_map, local: dict) -> st
         warnings.warn(f"{label}: the model is static in its file (Gazebo holds it fixed); loaded as a free body",
                       StaticModelNote, stacklevel=3)
         text = _SDF_STATIC.sub(r"\g<1>false\g<2>", text)
-    text = _SDF_SCRIPT.sub("", text)
     return _SDF_URI.sub(element, text)
+
+
+class _UnsupportedElement(logging.Filter):
+    """Drops Drake's "Ignoring unsupported SDFormat element" warnings (module-level `_quiet_unsupported_elements`)."""
+
+    def filter(self, record: logging.LogRecord) -> bool:
+        return "Ignoring unsupported SDFormat element" not in record.getMessage()
+
+
+@contextlib.contextmanager
+def _quiet_unsupported_elements():
+    """A context in which Drake's parser does not warn of the SDFormat elements it ignores. Gazebo's
+    model files are full of them (a visual's OGRE material ``<script>``, ``<self_collide>``,
+    ``<velocity_decay>``, ``<plugin>``, ``<sensor>``), on every load, and none is anything an object
+    here uses: its collision geometry and inertial (its visuals and contact properties are replaced by
+    ours). Every other warning of the parser is kept."""
+    logger, quiet = logging.getLogger("drake"), _UnsupportedElement()
+    logger.addFilter(quiet)
+    try:
+        yield
+    finally:
+        logger.removeFilter(quiet)
 
 
 def object_from_sdf(
@@ -306,7 +325,7 @@ def object_from_sdf(
     kind = path.suffix.lower().lstrip(".")
     text = drake_readable_model(path, label, parser.package_map(), local) if kind in ("sdf", "urdf") else None
     try:
-        with packages.quiet_downloads():
+        with packages.quiet_downloads(), _quiet_unsupported_elements():
             if text is None:
                 models = parser.AddModels(str(path.resolve()))
             else:
