@@ -5,7 +5,9 @@ the novel classes (`--objects novel`, `drake-grasp objects generate`: blobs, uni
 shapes, rings and handles) or everyday ones (`--objects everyday`, `objects.everyday`: polycubes,
 scans, mugs, bottles and boxes, every second one a URDF with a placeholder inertia) or low round ones
 (`--objects round`, `objects.round`: fruit and balls 4-11 cm) or hand tools (`--objects tools`,
-`objects.tools`: hammers, screwdrivers, spring clamps, markers and wrenches, lying down). Each object goes through the
+`objects.tools`: hammers, screwdrivers, spring clamps, markers and wrenches, lying down) or slender objects
+standing on their end (`--objects standing`, `objects.standing`: pegs, pencils, markers, vials, sticks). Each
+object goes through the
 compliance-centric algorithm's own choice (camera only) with `--attempts N`, under each scenario named
 (the "before" and "after" columns: e.g. the table-top estimate alone, and the funnel search), over
 trial seeds. The first attempt's outcome is the paper's protocol; within N counts a hold at any
@@ -35,7 +37,8 @@ from drake_grasp.sweeps.stats import short_rate
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--objects", choices=("novel", "everyday", "round", "tools"), default="novel", help="which generator")
+    parser.add_argument("--objects", choices=("novel", "everyday", "round", "tools", "standing"), default="novel",
+                        help="which generator")
     parser.add_argument("--files", help="a list of object files (class, path, optional scale; tab-separated) "
                         "instead of a generator's objects")
     parser.add_argument("--count", type=int, default=14, help="generated objects (the classes in turn)")
@@ -164,9 +167,9 @@ def _label(scenario: str, grasp: str) -> str:
 
 def _generator(name: str):
     """The generator module of `--objects NAME`."""
-    from drake_grasp.objects import everyday, novel, round as round_objects, tools
+    from drake_grasp.objects import everyday, novel, round as round_objects, standing, tools
 
-    return {"novel": novel, "everyday": everyday, "round": round_objects, "tools": tools}[name]
+    return {"novel": novel, "everyday": everyday, "round": round_objects, "tools": tools, "standing": standing}[name]
 
 
 def read_files_list(path: pathlib.Path) -> list[dict]:

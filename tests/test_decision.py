@@ -60,6 +60,28 @@ def test_a_standing_bottle_is_upright_and_takes_the_cylindrical_grasp_after_flat
     assert choose_shape(res, exclude=("upright",)) == "box"  # the cylindrical grasp failed: tried again
 
 
+def test_a_slender_standing_object_takes_the_flower_grasp_before_the_upright_one():
+    from drake_grasp.grasps import GRASP_OF_SHAPE
+    from drake_grasp.primitives.upright import slender_resemblance, upright_resemblance
+
+    peg = (0.08, [0.0195, 0.0195])  # Gazebo's wooden peg: 8 cm tall, 1.95 cm across
+    marker = (0.12, [0.026, 0.026])
+    bottle = (0.20, [0.07, 0.07])
+    domino = (0.03, [0.025, 0.01])  # standing, but not 1.8 times as tall as its footprint's larger side
+    assert slender_resemblance(*peg) > 0.99 and slender_resemblance(*marker) > 0.99
+    assert slender_resemblance(*bottle) < 0.01 and slender_resemblance(*domino) < 0.01
+    assert slender_resemblance(0.12, [0.04, 0.04]) < 0.01  # the cylindrical grasp's F1 and F2 reach it
+    assert math.isnan(slender_resemblance(0.08, [math.nan, 0.02]))
+    res = {"sphere": 0.0, "cylinder": 0.9, "box": 0.1, "flat": 0.19, "upright": upright_resemblance(*peg),
+           "slender": slender_resemblance(*peg)}
+    assert res["upright"] > 0.99  # upright, yet too thin for the cylindrical grasp round it
+    assert choose_shape(res) == "flat" and GRASP_OF_SHAPE["flat"] == "precision"
+    assert decision_margin(res) == pytest.approx(min(2 * (0.5 - 0.19), 2 * (res["slender"] - 0.5)))
+    assert choose_shape(res, exclude=("flat",)) == "upright"  # the flower grasp failed: the upright one next
+    no_slender = {k: v for k, v in res.items() if k != "slender"}
+    assert choose_shape(no_slender) == "upright"  # an estimate without it (older records) as before
+
+
 def test_a_low_round_object_takes_the_flower_grasp_where_the_sphere_leads():
     from drake_grasp.grasps import GRASP_OF_SHAPE
     from drake_grasp.primitives.decision import choose_with_funnels

@@ -20,10 +20,11 @@ def add_objects(sub) -> None:
         "plates and tiles 6-12 mm thick, T and L shapes, sticks and pens, dominoes lying and standing, "
         "cubes of 2-3 cm, balls and fruit. --kind round: low round objects, fruit and balls 4-11 cm, every "
         "second one a URDF with a real mass. --kind tools: hand tools lying down, hammers, screwdrivers, spring "
-        "clamps, markers and wrenches, every second one a URDF with its parts' real masses. The same --seed "
-        "gives byte-identical files.",
+        "clamps, markers and wrenches, every second one a URDF with its parts' real masses. --kind standing: "
+        "slender objects standing on their end, pegs, pencils, markers, vials and sticks 0.8-3.4 cm across, every "
+        "second one a URDF with a real mass. The same --seed gives byte-identical files.",
     )
-    generate.add_argument("--kind", choices=("novel", "everyday", "flower", "round", "tools"), default="novel",
+    generate.add_argument("--kind", choices=("novel", "everyday", "flower", "round", "tools", "standing"), default="novel",
                           help="which generator (default novel)")
     generate.add_argument("--count", type=int, required=True, metavar="N", help="how many objects")
     generate.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
@@ -34,13 +35,14 @@ def add_objects(sub) -> None:
 
 
 def _run_objects_generate(args) -> int:
-    from drake_grasp.objects import everyday, flower, novel, round as round_objects, tools
+    from drake_grasp.objects import everyday, flower, novel, round as round_objects, standing, tools
 
     check_seed(args.seed)
     if args.count < 1:
         raise UsageError(f"--count must be >= 1, got {args.count}")
     out = check_out_dir(args.out)
-    generator = {"novel": novel, "everyday": everyday, "flower": flower, "round": round_objects, "tools": tools}[args.kind]
+    generator = {"novel": novel, "everyday": everyday, "flower": flower, "round": round_objects, "tools": tools,
+                 "standing": standing}[args.kind]
     rows = generator.generate(args.count, args.seed, out)
     if args.json:
         print(json.dumps({"out": str(out), "objects": rows}))

@@ -37,7 +37,7 @@ _PARTS = ("spec", "mass_properties", "catalogue", "names", "mesh_files", "pieces
 
 # Every module of the package (`from drake_grasp.objects import repair` imports it, as usual).
 _MODULES = _PARTS + ("cleaning", "collada_mesh", "inertia_checks", "mesh_zoo", "mujoco_msh", "near_primitives", "novel", "packages",
-                     "piece_budget", "repair", "sizes", "solid", "vtk_mesh")
+                     "piece_budget", "repair", "sizes", "solid", "standing", "vtk_mesh")
 
 
 def __getattr__(name: str):

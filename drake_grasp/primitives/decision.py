@@ -14,7 +14,11 @@ known table), so it decides first:
    is at least `UPRIGHT_THRESHOLD` (1/2: standing more than 1.8 times as tall as its footprint is
    wide, and narrower than the hand wraps): the cylindrical grasp round the vertical axis, from the
    arm's side (`grasps.cylindrical_grasp`). Like flatness, it is a measured shape that the
-   silhouettes' box resemblance saturates on;
+   silhouettes' box resemblance saturates on. But **flat** first where the slender resemblance
+   (`primitives.upright`: upright, on a footprint narrower than 3.2 cm) is at least `SLENDER_THRESHOLD`
+   (1/2): a peg or a marker on its end, which the cylindrical grasp's F1 and F2 pass either side of and
+   the flower grasp's two-finger pinch holds (docs/design.md §5.4o). A flat grasp already used up
+   leaves the upright one;
 3. otherwise the paper's argmax over sphere, cylinder and box, refined by two measured shapes:
 
    a. where it picks the box and the round resemblance (`primitives.round_sides`, from the table-top
@@ -60,6 +64,7 @@ from drake_grasp.primitives.scores import SHAPES
 
 FLAT = "flat"
 UPRIGHT = "upright"
+SLENDER = "slender"  # not a choice: it turns an upright object's choice into the flat one (step 2)
 LOW = "low"  # not a choice: it turns the sphere's choice into the flat one (step 3b)
 ROUND = "round"  # not a choice: it turns the box's choice into the sphere's (step 3a)
 SQUAT = "squat"  # not a choice: it turns a low round object's box into the flat choice (step 3a)
@@ -68,6 +73,7 @@ THIN_NARROW = "thin_narrow"  # not a choice: it turns a thin object's box or cyl
 CHOICES = SHAPES + (FLAT, UPRIGHT)
 FLAT_THRESHOLD = 0.5
 UPRIGHT_THRESHOLD = 0.5
+SLENDER_THRESHOLD = 0.5
 LOW_THRESHOLD = 0.5
 ROUND_THRESHOLD = 0.5
 SQUAT_THRESHOLD = 0.5
@@ -90,6 +96,9 @@ def choose_shape(resemblances: dict, exclude=()) -> str | None:
         return None
     flat = _value(resemblances, FLAT)
     if FLAT not in exclude and math.isfinite(flat) and flat >= FLAT_THRESHOLD:
+        return FLAT
+    slender = _value(resemblances, SLENDER)
+    if FLAT not in exclude and math.isfinite(slender) and slender >= SLENDER_THRESHOLD:
         return FLAT
     upright = _value(resemblances, UPRIGHT)
     if UPRIGHT not in exclude and math.isfinite(upright) and upright >= UPRIGHT_THRESHOLD:
@@ -138,6 +147,11 @@ def decision_margin(resemblances: dict) -> float:
     bound = 2.0 * abs(flat - FLAT_THRESHOLD)
     if flat >= FLAT_THRESHOLD:
         return bound
+    slender = _value(resemblances, SLENDER)
+    if math.isfinite(slender):
+        bound = min(bound, 2.0 * abs(slender - SLENDER_THRESHOLD))
+        if slender >= SLENDER_THRESHOLD:
+            return bound
     upright = _value(resemblances, UPRIGHT)
     if math.isfinite(upright):
         bound = min(bound, 2.0 * abs(upright - UPRIGHT_THRESHOLD))

@@ -13,6 +13,16 @@ The resemblance is a logistic step up in the ratio of the height to the footprin
 most boxes less than 1.5), width `UPRIGHT_RATIO_WIDTH`, times a step down in that larger side, 1/2 at
 `UPRIGHT_SPAN` (11 cm: what the hand's fingers wrap around; a wider object is not grasped round its
 axis). Both are choices.
+
+The slender resemblance picks out, among upright objects, those too thin for that grasp: a peg, a
+marker on its end, a vial. The cylindrical grasp closes F3 against F1 and F2, which sit 25 mm either
+side of F3's plane with their pads from 13.5 mm out: round a standing object thinner than about 2.7 cm
+they pass either side and F3 alone meets it, and pushes it over. Measured on standing cylinders 7 and
+12 cm tall, the plain command, seeds 1-2 (docs/design.md §5.4o): 1.2-2.6 cm across, the cylindrical grasp
+0/12 (missed, or dropped), the flower grasp (its two-finger pinch) 12/12; 3.0 and 3.5 cm across, the
+cylindrical grasp held half. It is the same ratio step as the upright resemblance times a step down in the
+footprint's larger side, 1/2 at `SLENDER_SPAN` (3.2 cm, under the pinch's 3.5 cm,
+`grasps.PINCH_MAX_LENGTH`), width `SLENDER_SPAN_WIDTH`.
 """
 
 import math
@@ -25,6 +35,8 @@ UPRIGHT_RATIO = 1.8
 UPRIGHT_RATIO_WIDTH = 0.1
 UPRIGHT_SPAN = 0.11  # m
 UPRIGHT_SPAN_WIDTH = 0.005  # m
+SLENDER_SPAN = 0.032  # m
+SLENDER_SPAN_WIDTH = 0.001  # m
 
 
 def upright_resemblance(height: float, footprint: np.ndarray) -> float:
@@ -42,3 +54,21 @@ def table_top_uprightness(estimate) -> float:
     """`upright_resemblance` of a table-top estimate (`table_top.TableTopEstimate`)."""
     sides = np.asarray(estimate.extents_sides, float)
     return upright_resemblance(float(estimate.height), sides[:2])
+
+
+def slender_resemblance(height: float, footprint: np.ndarray) -> float:
+    """The slender resemblance in [0, 1] of an object `height` m tall whose footprint spans `footprint`
+    (m, its two horizontal sides): upright, and narrower than the cylindrical grasp closes on (module
+    docstring); NaN when either is not finite."""
+    footprint = np.asarray(footprint, float)
+    if not (math.isfinite(height) and np.all(np.isfinite(footprint))) or height <= 0.0:
+        return math.nan
+    side = float(np.max(footprint))
+    ratio = height / max(side, 1e-6)
+    return (1.0 - step_down(ratio, UPRIGHT_RATIO, UPRIGHT_RATIO_WIDTH)) * step_down(side, SLENDER_SPAN, SLENDER_SPAN_WIDTH)
+
+
+def table_top_slenderness(estimate) -> float:
+    """`slender_resemblance` of a table-top estimate (`table_top.TableTopEstimate`)."""
+    sides = np.asarray(estimate.extents_sides, float)
+    return slender_resemblance(float(estimate.height), sides[:2])
