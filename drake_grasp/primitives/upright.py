@@ -39,36 +39,35 @@ SLENDER_SPAN = 0.032  # m
 SLENDER_SPAN_WIDTH = 0.001  # m
 
 
-def upright_resemblance(height: float, footprint: np.ndarray) -> float:
-    """The resemblance in [0, 1] of an object `height` m tall whose footprint spans `footprint` (m, its
-    two horizontal sides), NaN when either is not finite."""
+def _standing_narrower_than(height: float, footprint: np.ndarray, span: float, span_width: float) -> float:
+    """The ratio step (height over the footprint's larger side, 1/2 at `UPRIGHT_RATIO`) times a step down
+    in that side, 1/2 at `span` (m, width `span_width`); NaN when either input is not finite."""
     footprint = np.asarray(footprint, float)
     if not (math.isfinite(height) and np.all(np.isfinite(footprint))) or height <= 0.0:
         return math.nan
     side = float(np.max(footprint))
     ratio = height / max(side, 1e-6)
-    return (1.0 - step_down(ratio, UPRIGHT_RATIO, UPRIGHT_RATIO_WIDTH)) * step_down(side, UPRIGHT_SPAN, UPRIGHT_SPAN_WIDTH)
+    return (1.0 - step_down(ratio, UPRIGHT_RATIO, UPRIGHT_RATIO_WIDTH)) * step_down(side, span, span_width)
 
 
-def table_top_uprightness(estimate) -> float:
-    """`upright_resemblance` of a table-top estimate (`table_top.TableTopEstimate`)."""
-    sides = np.asarray(estimate.extents_sides, float)
-    return upright_resemblance(float(estimate.height), sides[:2])
+def upright_resemblance(height: float, footprint: np.ndarray) -> float:
+    """The resemblance in [0, 1] of an object `height` m tall whose footprint spans `footprint` (m, its
+    two horizontal sides), NaN when either is not finite."""
+    return _standing_narrower_than(height, footprint, UPRIGHT_SPAN, UPRIGHT_SPAN_WIDTH)
 
 
 def slender_resemblance(height: float, footprint: np.ndarray) -> float:
     """The slender resemblance in [0, 1] of an object `height` m tall whose footprint spans `footprint`
     (m, its two horizontal sides): upright, and narrower than the cylindrical grasp closes on (module
     docstring); NaN when either is not finite."""
-    footprint = np.asarray(footprint, float)
-    if not (math.isfinite(height) and np.all(np.isfinite(footprint))) or height <= 0.0:
-        return math.nan
-    side = float(np.max(footprint))
-    ratio = height / max(side, 1e-6)
-    return (1.0 - step_down(ratio, UPRIGHT_RATIO, UPRIGHT_RATIO_WIDTH)) * step_down(side, SLENDER_SPAN, SLENDER_SPAN_WIDTH)
+    return _standing_narrower_than(height, footprint, SLENDER_SPAN, SLENDER_SPAN_WIDTH)
+
+
+def table_top_uprightness(estimate) -> float:
+    """`upright_resemblance` of a table-top estimate (`table_top.TableTopEstimate`)."""
+    return upright_resemblance(float(estimate.height), np.asarray(estimate.extents_sides, float)[:2])
 
 
 def table_top_slenderness(estimate) -> float:
     """`slender_resemblance` of a table-top estimate (`table_top.TableTopEstimate`)."""
-    sides = np.asarray(estimate.extents_sides, float)
-    return slender_resemblance(float(estimate.height), sides[:2])
+    return slender_resemblance(float(estimate.height), np.asarray(estimate.extents_sides, float)[:2])
