@@ -126,6 +126,9 @@ def test_a_model_uri_resolves_on_gazebo_model_path_and_a_missing_one_is_one_line
     assert cli.main(["objects", "check", str(path)]) == 2  # not beside it, not on the model path
     (line,) = capsys.readouterr().err.strip().splitlines()
     assert "model://can_meshes/ is not known" in line and "--package-path" in line
+    # As the line says: --package-path names the folder that holds it (no package.xml needed).
+    assert cli.main(["objects", "check", str(path), "--package-path", str(elsewhere)]) == 0
+    capsys.readouterr()
     monkeypatch.setenv("GAZEBO_MODEL_PATH", f"{tmp_path / 'nowhere'}:{elsewhere}")
     spec, _ = _check(path)
     assert sorted(spec.extents) == pytest.approx(sorted(np.array(CAN_MM) / 1000), abs=1e-3)

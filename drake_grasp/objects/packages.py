@@ -143,18 +143,22 @@ def register_packages(package_map, model_file: Path, package_path=()) -> dict[st
     the Gazebo models its ``model://`` URIs name (:func:`gazebo_models`), each as a package of that
     name rooted at its folder, unless a package.xml of that name was found. Returns {name: package.xml
     or model folder} of what was registered."""
+    try:
+        models = referenced_models(Path(model_file).read_text(errors="replace"))
+    except OSError:
+        models = []
     local = packages_above(model_file)
     for directory in package_path:
-        local.update(packages_under(Path(directory)))
+        try:
+            local.update(packages_under(Path(directory)))
+        except ObjectError:
+            if not (models and Path(directory).expanduser().is_dir()):
+                raise  # a folder of Gazebo models needs no package.xml
     for name, xml in local.items():
         if package_map.Contains(name):
             package_map.Remove(name)
         package_map.AddPackageXml(str(xml))
-    try:
-        text = Path(model_file).read_text(errors="replace")
-    except OSError:
-        return local
-    wanted = [name for name in referenced_models(text) if name not in local]
+    wanted = [name for name in models if name not in local]
     for name, folder in gazebo_models(model_file, wanted, package_path).items():
         if package_map.Contains(name):
             package_map.Remove(name)
