@@ -139,7 +139,6 @@ _SDF_URI = re.compile(r"(<uri\s*>)([^<]*)(</uri\s*>)")
 _SDF_STATIC = re.compile(r"(<static\s*>)\s*(?:true|1)\s*(</static\s*>)", re.IGNORECASE)
 
 
-
 def _reference_path(reference: str, base: Path, package_map, local: dict, label: str) -> Path:
     """The file a model file's mesh reference names, resolved as Drake resolves it: ``package://``
     (and SDFormat's ``model://``) against the parser's PackageMap (the packages registered by
@@ -237,7 +236,7 @@ def drake_readable_model(path: Path, label: str, package_map, local: dict) -> st
 
 
 class _UnsupportedElement(logging.Filter):
-    """Drops Drake's "Ignoring unsupported SDFormat element" warnings (module-level `_quiet_unsupported_elements`)."""
+    """Drops Drake's "Ignoring unsupported SDFormat element" warnings (`_quiet_unsupported_elements`)."""
 
     def filter(self, record: logging.LogRecord) -> bool:
         return "Ignoring unsupported SDFormat element" not in record.getMessage()
@@ -283,8 +282,9 @@ def object_from_sdf(
     scene's ContactParameters; a compliant hydroelastic ``.vtk`` mesh is read as its boundary
     surface); a mesh Drake cannot read (STL, PLY, DAE, GLB) is read from an OBJ converted into the
     cache (:func:`drake_readable_model`); ``package://`` URIs resolve against the package.xml files
-    in the file's folder and above it and under `package_path` (:mod:`drake_grasp.objects.packages`),
-    else Drake's default PackageMap; half spaces, height maps and other non-solid shapes are
+    in the file's folder and above it and under `package_path`, Gazebo's ``model://`` URIs against
+    model folders there and on its model path (:mod:`drake_grasp.objects.packages`), else Drake's
+    default PackageMap; a static model is loaded free (a note); half spaces, height maps and other non-solid shapes are
     rejected. An object no hand can grasp is refused (:mod:`drake_grasp.objects.sizes`).
 
     Args:
