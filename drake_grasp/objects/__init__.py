@@ -11,6 +11,7 @@ One concept per module:
   .dae, in its declared unit), `repair` (a real mesh into
   closed shells), `solid` (which shells are one object, and their union), `sizes` (the sizes the
   hand can grasp; a file outside them refused), `model_files` (SDFormat, URDF, MJCF),
+  `readable_models` (a model file's text and meshes as Drake's parser can take them),
   `inertia_checks` (a file's inertial checked), `packages` (where ``package://`` and Gazebo's
   ``model://`` URIs point),
   `names` (what a command line names, and the options object files take), `check`
@@ -37,7 +38,7 @@ _PARTS = ("spec", "mass_properties", "catalogue", "names", "mesh_files", "pieces
 
 # Every module of the package (`from drake_grasp.objects import repair` imports it, as usual).
 _MODULES = _PARTS + ("cleaning", "collada_mesh", "inertia_checks", "mesh_zoo", "mujoco_msh", "near_primitives", "novel", "packages",
-                     "piece_budget", "repair", "sizes", "solid", "standing", "vtk_mesh")
+                     "piece_budget", "readable_models", "repair", "sizes", "solid", "standing", "vtk_mesh")
 
 
 def __getattr__(name: str):
