@@ -64,18 +64,22 @@ def packages_above(model_file: Path, levels: int = PACKAGE_SEARCH_LEVELS) -> dic
     folders above it; of two with one name, the nearer. Unreadable ones are skipped (a model file
     that needs one gets the parser's error for its URI instead)."""
     found: dict[str, Path] = {}
-    folder = Path(model_file).resolve().parent
-    for _ in range(levels + 1):
+    for folder in _folders_up(model_file, levels):
         candidate = folder / "package.xml"
         if candidate.is_file():
             try:
                 found.setdefault(package_name(candidate), candidate)
             except ObjectError:
                 pass
-        if folder.parent == folder:
-            break
-        folder = folder.parent
     return found
+
+
+def _folders_up(model_file: Path, levels: int = PACKAGE_SEARCH_LEVELS) -> list[Path]:
+    """`model_file`'s folder and the `levels` folders above it (fewer at the root), nearest first."""
+    folders = [Path(model_file).resolve().parent]
+    while len(folders) <= levels and folders[-1].parent != folders[-1]:
+        folders.append(folders[-1].parent)
+    return folders
 
 
 def packages_under(directory: Path) -> dict[str, Path]:
@@ -117,12 +121,7 @@ def gazebo_models(model_file: Path, names, package_path=(), environ=None) -> dic
     says: under `package_path`, beside or above `model_file` (PACKAGE_SEARCH_LEVELS), then on the
     model path variables of `environ` (default os.environ). A name found nowhere is left out."""
     environ = os.environ if environ is None else environ
-    near, folder = [], Path(model_file).resolve().parent
-    for _ in range(PACKAGE_SEARCH_LEVELS + 1):
-        near.append(folder)
-        if folder.parent == folder:
-            break
-        folder = folder.parent
+    near = _folders_up(model_file)
     on_path = [Path(entry).expanduser() for variable in GAZEBO_PATH_VARIABLES
                for entry in environ.get(variable, "").split(os.pathsep) if entry]
     roots = [Path(d).expanduser() for d in package_path] + near + on_path
