@@ -107,6 +107,45 @@ def test_the_gentle_close_holds_an_8_mm_plate_that_the_breakaway_close_drops(tmp
     assert not paper.success
 
 
+
+def test_the_lift_squeeze_carries_a_heavy_plate_that_the_gentle_squeeze_drops(tmp_path):
+    """A 0.4 kg plate (7.3 x 4.8 x 1.1 cm, as a model file with its own mass): the gentle close's
+    squeeze, kept through the lift, lets it fall; the lift's harder squeeze (HandAction.SQUEEZE,
+    under the clutch's breakaway) carries it (oracle pose, seed 1; docs/design.md §5.4f)."""
+    import dataclasses
+
+    import trimesh
+
+    from drake_grasp.grasps import oracle_estimate, plan_compliant_grasp
+    from drake_grasp.objects.names import resolve_object
+    from drake_grasp.station import load_scenario
+    from drake_grasp.trial.given_plan import run_trial
+
+    mass, box = 0.4, trimesh.creation.box(extents=(0.073, 0.048, 0.0113))
+    box.export(tmp_path / "plate.obj")
+    inertia = box.moment_inertia / box.mass * mass
+    (tmp_path / "plate.urdf").write_text(
+        f'<?xml version="1.0"?><robot name="plate"><link name="plate"><inertial><mass value="{mass}"/>'
+        f'<inertia ixx="{inertia[0, 0]}" ixy="0" ixz="0" iyy="{inertia[1, 1]}" iyz="0" izz="{inertia[2, 2]}"/>'
+        '</inertial><visual><geometry><mesh filename="plate.obj"/></geometry></visual>'
+        '<collision><geometry><mesh filename="plate.obj"/></geometry></collision></link></robot>')
+    spec = resolve_object(str(tmp_path / "plate.urdf"))
+    assert spec.mass == pytest.approx(mass)
+
+    def trial(lift_squeeze_torque):
+        scenario = load_scenario()
+        scenario.hand = dataclasses.replace(scenario.hand, lift_squeeze_torque=lift_squeeze_torque)
+        return run_trial(scenario, spec, lambda X_WO, s: plan_compliant_grasp("precision", oracle_estimate(X_WO, s)),
+                         seed=1, method="oracle", grasp="precision")
+
+    hand = load_scenario().hand
+    gentle = trial(hand.gentle_close_torque)  # the lift squeezes no harder than the close
+    assert not gentle.success
+    squeezed = trial(hand.lift_squeeze_torque)
+    assert squeezed.success, (squeezed.failure, squeezed.detail)
+    assert not any(squeezed.breakaway)
+
+
 def test_cli_generates_the_flower_objects(tmp_path, capsys):
     from drake_grasp.cli import main
 

@@ -262,3 +262,43 @@ def test_a_gentle_pinch_closes_f1_and_f2_and_leaves_f3_where_it_is():
         gentle = _step(gentle, action=HandAction.GENTLE_CLOSE, params=params)
     np.testing.assert_array_equal(drive.proximal[:2], gentle.proximal[:2])
     assert not drive.broken_away.any()
+
+
+
+def test_the_lift_squeezes_the_fingers_that_squeeze_harder_and_the_hold_keeps_it():
+    """After a gentle close, SQUEEZE raises a blocked finger's lead to the lift's torque; a finger that
+    closed on nothing (or F3 left at a pinch's preshape) keeps its command; HOLD then keeps them all."""
+    params = HandControllerParams()
+    drive = FingerDrive()
+    for _ in range(40):
+        drive = _step(drive, action=HandAction.GENTLE_CLOSE, params=params)
+    blocked = drive.proximal.copy()
+    # F1 and F2 are blocked where they are; F3 closes on.
+    for _ in range(20):
+        drive = _step(drive, action=HandAction.GENTLE_CLOSE, params=params,
+                      q_p=[blocked[0], blocked[1], drive.proximal[2]])
+    assert drive.proximal[0] == pytest.approx(blocked[0] + params.gentle_proximal_lead)
+    # F3 now rests where its command is: it squeezes nothing.
+    f3 = drive.proximal[2]
+    held = _step(drive, action=HandAction.HOLD, params=params, q_p=[blocked[0], blocked[1], f3])
+    np.testing.assert_array_equal(held.proximal, drive.proximal)  # HOLD alone changes nothing
+    for _ in range(5):
+        drive = _step(drive, action=HandAction.SQUEEZE, params=params, q_p=[blocked[0], blocked[1], f3])
+    np.testing.assert_allclose(drive.proximal[:2], blocked[:2] + params.lift_squeeze_lead)
+    np.testing.assert_allclose(drive.distal, drive.proximal * hand.DISTAL_PER_PROXIMAL)
+    assert drive.proximal[2] == f3
+    assert params.lift_squeeze_lead * params.proximal_gains[0] == pytest.approx(params.lift_squeeze_torque)
+    assert not drive.broken_away.any()
+    # The object gives a little in the hold: the commands stay where the lift left them.
+    squeezed = drive.proximal.copy()
+    for _ in range(5):
+        drive = _step(drive, action=HandAction.HOLD, params=params,
+                      q_p=[blocked[0] + 0.01, blocked[1] + 0.01, f3])
+    np.testing.assert_array_equal(drive.proximal, squeezed)
+
+
+def test_the_lift_squeeze_lies_between_the_gentle_close_and_the_breakaway():
+    with pytest.raises(ValueError, match="lift_squeeze_torque"):
+        HandControllerParams(lift_squeeze_torque=0.5)
+    with pytest.raises(ValueError, match="lift_squeeze_torque"):
+        HandControllerParams(lift_squeeze_torque=0.2)

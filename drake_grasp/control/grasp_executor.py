@@ -22,8 +22,10 @@ The hand has two closes. Torque close with breakaway (the paper's, and every pla
 closes through the close, the lift and the hold, so that a finger re-squeezes when the object settles.
 A plan without breakaway (the flower grasp) closes gently (HandAction.GENTLE_CLOSE: each finger stops
 at its first contact, its clutch engaged) and then holds its fingers where they stopped through the lift
-and the hold (HandAction.HOLD): the BH8's worm drives are not back-driven, so a light squeeze on a
-thin edge keeps its shape when the lift loads it. A plan whose thumb does not close (the flower grasp's
+and the hold: the BH8's worm drives are not back-driven, so a squeeze on a thin edge keeps its shape
+when the lift loads it. During the lift the fingers that squeeze squeeze harder (HandAction.SQUEEZE:
+the motor's torque rises, still under the clutch's), so that the squeeze carries the object's weight;
+the hold keeps their commands where the lift left them (HandAction.HOLD). A plan whose thumb does not close (the flower grasp's
 two-finger pinch, `GraspPlan.thumb_closes`) closes F1 and F2 so and leaves F3 at its preshape
 (HandAction.GENTLE_PINCH).
 """
@@ -286,7 +288,7 @@ class GraspExecutor(LeafSystem):
             action = HandAction.CLOSE
         else:
             gentle = HandAction.GENTLE_CLOSE if motion.plan.thumb_closes else HandAction.GENTLE_PINCH
-            action = gentle if phase == GraspPhase.CLOSE else HandAction.HOLD
+            action = {GraspPhase.CLOSE: gentle, GraspPhase.LIFT: HandAction.SQUEEZE}.get(phase, HandAction.HOLD)
         output.SetFromVector([motion.plan.spread, float(action)])
 
     def _CalcPreshape(self, context: Context, output: BasicVector) -> None:

@@ -8,7 +8,10 @@ object or its 48 deg limit. If the distal link is stopped first, the motor stall
 stops. A stopped finger keeps squeezing with its stall torque. Reopening re-engages the clutch.
 A gentle close (HandAction.GENTLE_CLOSE) keeps the motor's torque under the clutch's breakaway torque:
 each finger stops, coupled, at its first contact and squeezes lightly there (the flower grasp's close,
-whose fingertips meet a thin object's edge at the table and must not curl over it). A gentle pinch
+whose fingertips meet a thin object's edge at the table and must not curl over it); in the lift that
+follows (HandAction.SQUEEZE) a squeezing finger's motor rises to the lift's torque, still under the
+clutch's, so that the squeeze also carries the object's weight, and the hold (HandAction.HOLD) keeps
+the commands where the lift left them. A gentle pinch
 (HandAction.GENTLE_PINCH) closes F1 and F2 so while F3 stays where its preshape put it (the flower
 grasp's two-finger pinch of a small object, F1 and F2 opposed at a 90 deg spread).
 Spread (F1 and F2, one motor) goes to the compliance mode's angle before the fingers close.
@@ -59,6 +62,13 @@ class HandControllerParams:
             breakaway is set by the commanded velocity and the motor's current limit (BH8-Series
             User's Manual, D3000 AF.00, §9.3.1, Figure 25: about 2-22 N). The distal joint's stall
             torque scales with it (one motor drives both). 0.3 N*m is about 4 N at the fingertip.
+        lift_squeeze_torque: the motor's torque on a squeezing finger under HandAction.SQUEEZE (the
+            gentle close's lift), N*m, between `gentle_close_torque` and `breakaway_torque`. The close
+            stops each finger lightly at its first contact; while the object is lifted the motor's
+            current rises so that the squeeze carries its weight as well: a few newtons at the
+            fingertips are friction for 0.2-0.3 kg, not for a 0.5 kg part or a model file's 1 kg
+            placeholder (docs/design.md §5.4f, "The firm lift"). 0.45 N*m is about 6 N at the
+            fingertip, 10 % under the clutch's breakaway.
         spread_torque: stall torque of the spread drive, N*m (assumed).
         closing_time: time for a free proximal joint to go from open to its 140 deg limit, s.
         spread_time: time for the spread to go end to end (180 deg), s.
@@ -70,6 +80,7 @@ class HandControllerParams:
     proximal_drive_torque: float = 1.0
     distal_squeeze_torque: float = hand.FINGERTIP_STALL_FORCE * hand.A3
     gentle_close_torque: float = 0.3
+    lift_squeeze_torque: float = 0.45
     spread_torque: float = 1.0
     closing_time: float = 1.0
     spread_time: float = 0.5
@@ -80,7 +91,7 @@ class HandControllerParams:
 
     def __post_init__(self):
         for name in ("breakaway_torque", "proximal_drive_torque", "distal_squeeze_torque", "gentle_close_torque",
-                     "spread_torque",
+                     "lift_squeeze_torque", "spread_torque",
                      "closing_time", "spread_time", "period"):
             value = getattr(self, name)
             if not (math.isfinite(value) and value > 0):
@@ -94,6 +105,12 @@ class HandControllerParams:
             raise ValueError(
                 "hand controller: gentle_close_torque must be under breakaway_torque "
                 f"({self.gentle_close_torque} >= {self.breakaway_torque}), or a gentle close breaks away"
+            )
+        if not self.gentle_close_torque <= self.lift_squeeze_torque < self.breakaway_torque:
+            raise ValueError(
+                "hand controller: lift_squeeze_torque must be at least gentle_close_torque and under "
+                f"breakaway_torque ({self.gentle_close_torque} <= {self.lift_squeeze_torque} < "
+                f"{self.breakaway_torque}), or the lift loosens the squeeze or breaks away"
             )
 
     @property
@@ -122,6 +139,11 @@ class HandControllerParams:
     def gentle_distal_lead(self) -> float:
         """The distal joint's lead under a gentle close: its stall torque scaled as the motor's."""
         return self.distal_lead * self.gentle_close_torque / self.proximal_drive_torque
+
+    @property
+    def lift_squeeze_lead(self) -> float:
+        """A squeezing finger's proximal lead under HandAction.SQUEEZE: its torque over the PD gain."""
+        return self.lift_squeeze_torque / self.proximal_gains[0]
 
     @property
     def spread_lead(self) -> float:
@@ -273,6 +295,14 @@ def advance_drive(
             distal[f] = _maximum(_maximum(distal[f] - w_d_free * dt, proximal[f] * ratio),
                                  distal_measured[f] - distal_lead)
         broken, angle = [False] * F, [math.nan] * F
+    elif action == HandAction.SQUEEZE:
+        # A finger that squeezes (its command leads it by most of the gentle lead: blocked by the object)
+        # squeezes with the lift's torque; the others keep their commands (F3 left at its preshape by a
+        # pinch, a finger that closed on nothing).
+        for f in range(F):
+            if not broken[f] and proximal[f] - proximal_measured[f] >= 0.8 * params.gentle_proximal_lead:
+                proximal[f] = _maximum(proximal[f], proximal_measured[f] + params.lift_squeeze_lead)
+                distal[f] = proximal[f] * ratio
     # HOLD, or CLOSE while the spread is still moving: commands stay (a squeezing finger squeezes on).
     return ([spread, (spread - spread_before) / dt] + proximal + distal + [1.0 if b else 0.0 for b in broken]
             + angle + [(p - p0) / dt for p, p0 in zip(proximal, proximal_before)]

@@ -127,6 +127,7 @@ class HandAction(enum.IntEnum):
     PRESHAPE = 3  # move each finger (coupled, clutch engaged) to a given proximal angle and stop.
     GENTLE_CLOSE = 4  # close with the motor's torque held under the clutch's breakaway: no breakaway.
     GENTLE_PINCH = 5  # F1 and F2 close as GENTLE_CLOSE; F3 keeps its place (the flower's two-finger pinch).
+    SQUEEZE = 6  # a finger that squeezes squeezes harder, still under the breakaway (a gentle close's lift).
 
 
 @dataclasses.dataclass(frozen=True)
