@@ -45,6 +45,11 @@ from drake_grasp.robot.hand import HAND_JOINTS, HandAction
 
 NUM_FINGERS = 3
 
+# Under HandAction.SQUEEZE a finger counts as squeezing (blocked by the object) while its command leads
+# its measured angle by at least this share of the gentle close's lead: a finger at rest on nothing sits
+# at its command (no lead), one stalled on the object leads by the whole gentle lead.
+SQUEEZING_LEAD_SHARE = 0.8
+
 
 @dataclasses.dataclass
 class HandControllerParams:
@@ -296,11 +301,11 @@ def advance_drive(
                                  distal_measured[f] - distal_lead)
         broken, angle = [False] * F, [math.nan] * F
     elif action == HandAction.SQUEEZE:
-        # A finger that squeezes (its command leads it by most of the gentle lead: blocked by the object)
-        # squeezes with the lift's torque; the others keep their commands (F3 left at its preshape by a
-        # pinch, a finger that closed on nothing).
+        # A finger that squeezes (SQUEEZING_LEAD_SHARE) squeezes with the lift's torque; the others keep
+        # their commands (F3 left at its preshape by a pinch, a finger that closed on nothing).
+        squeezing_lead = SQUEEZING_LEAD_SHARE * params.gentle_proximal_lead
         for f in range(F):
-            if not broken[f] and proximal[f] - proximal_measured[f] >= 0.8 * params.gentle_proximal_lead:
+            if not broken[f] and proximal[f] - proximal_measured[f] >= squeezing_lead:
                 proximal[f] = _maximum(proximal[f], proximal_measured[f] + params.lift_squeeze_lead)
                 distal[f] = proximal[f] * ratio
     # HOLD, or CLOSE while the spread is still moving: commands stay (a squeezing finger squeezes on).

@@ -20,9 +20,9 @@ side of F3's plane with their pads from 13.5 mm out: round a standing object thi
 they pass either side and F3 alone meets it, and pushes it over. Measured on standing cylinders 7 and
 12 cm tall, the plain command, seeds 1-2 (docs/design.md §5.4o): 1.2-2.6 cm across, the cylindrical grasp
 0/12 (missed, or dropped), the flower grasp (its two-finger pinch) 12/12; 3.0 and 3.5 cm across, the
-cylindrical grasp held half, at 4 cm all (the flower grasp all six). It is the same ratio step as the upright resemblance times a step down in the
-footprint's larger side, 1/2 at `SLENDER_SPAN` (3.2 cm, under the pinch's 3.5 cm,
-`grasps.PINCH_MAX_LENGTH`), width `SLENDER_SPAN_WIDTH`.
+cylindrical grasp held half, at 4 cm all (the flower grasp all six). It is the same ratio step as the
+upright resemblance times a step down in the footprint's larger side, 1/2 at `SLENDER_SPAN` (3.2 cm,
+under the pinch's 3.5 cm, `grasps.PINCH_MAX_LENGTH`), width `SLENDER_SPAN_WIDTH`.
 """
 
 import math
