@@ -115,6 +115,58 @@ def test_an_mjcf_naming_a_msh_mesh_loads_and_a_short_trial_runs(tmp_path, short_
         resolve_user_object(str(path))
 
 
+def _included_collection(root, body_geoms=None):
+    """An object as RoboHive's object_sim lays its objects out: ``cube/object.xml`` includes the
+    collection's ``common.xml`` (the angle unit, default classes, a floor in its own worldbody) and the
+    object's ``assets.xml`` and ``body.xml``; meshdir is the collection's folder, and mesh paths go
+    up and down again through the collection's name. Returns the object file's path."""
+    collection = root / "collection"
+    (collection / "cube").mkdir(parents=True)
+    trimesh.creation.box((0.05, 0.04, 0.03)).export(collection / "cube" / "cube.stl")
+    (collection / "common.xml").write_text("""<mujoco>
+  <compiler angle="radian"/>
+  <default><default class="grab"><geom type="mesh"/>
+    <default class="object_col"><geom type="mesh" density="1250" contype="1" conaffinity="1"/></default>
+  </default></default>
+  <worldbody><geom type="plane" size="4 4 .1"/></worldbody>
+</mujoco>""")
+    (collection / "cube" / "assets.xml").write_text(
+        '<mujocoinclude><asset><mesh name="cube" file="../collection/cube/cube.stl"/></asset></mujocoinclude>')
+    (collection / "cube" / "body.xml").write_text(body_geoms or """<mujocoinclude>
+  <geom name="cube_visual" mesh="cube" contype="0" conaffinity="0"/>
+  <geom name="cube_contact" mesh="cube" class="object_col"/>
+</mujocoinclude>""")
+    path = collection / "cube" / "object.xml"
+    path.write_text("""<mujoco>
+  <compiler meshdir=".."/>
+  <include file="../common.xml"/>
+  <include file="assets.xml"/>
+  <worldbody><body name="object" pos="0 0 0.05" childclass="grab"><include file="body.xml"/></body></worldbody>
+</mujoco>""")
+    return path
+
+
+def test_an_mjcf_object_split_across_included_files_loads(tmp_path):
+    """Its compilers merge (radians from one, meshdir from the other), its worldbodies merge (the
+    floor is the world's, not the object), and its body's geoms come from the included body file."""
+    path = _included_collection(tmp_path)
+    spec, _ = check_object(str(path))
+    assert sorted(spec.extents) == pytest.approx([0.03, 0.04, 0.05], abs=1e-6)
+    assert spec.mass == pytest.approx(1250 * 0.05 * 0.04 * 0.03, rel=1e-4)  # object_col's density
+
+
+@pytest.mark.parametrize("body, message", [
+    ('<mujocoinclude><include file="body.xml"/></mujocoinclude>', r"nests deeper than 16 files"),
+    ('<mujocoinclude><include file="missing.xml"/></mujocoinclude>', r"included file 'missing.xml' not found"),
+    ('<robot name="x"/>', r"included file 'body.xml' is not MJCF"),
+])
+def test_a_broken_include_is_refused_in_one_line(tmp_path, capsys, body, message):
+    path = _included_collection(tmp_path, body_geoms=body)
+    assert cli.main(["objects", "check", str(path)]) == 2
+    (line,) = capsys.readouterr().err.strip().splitlines()
+    assert __import__("re").search(message, line), line
+
+
 # --- Drake's tetrahedral .vtk -----------------------------------------------------------------
 
 

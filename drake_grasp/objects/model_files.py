@@ -346,21 +346,62 @@ def _geom_mesh(geom: dict, meshes: dict, label: str) -> trimesh.Trimesh:
     raise ObjectError(f"{label}: geom type {kind!r} is not a solid an object can be made of")
 
 
+_MAX_INCLUDE_DEPTH = 16  # nested <include>s deeper than this are taken for a cycle
+
+
+def _expand_includes(element, main_dir: Path, label: str, digest, depth: int = 0) -> None:
+    """Replace each ``<include file="..."/>`` under `element` by the children of the file's root
+    (``<mujocoinclude>``, or ``<mujoco>`` as MuJoCo 3 also allows), in place and recursively.
+
+    MuJoCo resolves an included file's path against the main model file's folder, whichever file
+    names it, and so does this. Object collections built for MuJoCo (RoboHive's object_sim, for one)
+    keep the body's geoms, the assets and the defaults in separate files that the object's file
+    includes; without this their bodies read as empty."""
+    for index, child in reversed(list(enumerate(list(element)))):
+        if child.tag != "include":
+            _expand_includes(child, main_dir, label, digest, depth)
+            continue
+        file = child.get("file")
+        if file is None:
+            raise ObjectError(f"{label}: an <include> without a file")
+        if depth >= _MAX_INCLUDE_DEPTH:
+            raise ObjectError(f"{label}: <include> of {file!r} nests deeper than {_MAX_INCLUDE_DEPTH} files "
+                              "(an include cycle?)")
+        included_path = main_dir / file
+        if not included_path.is_file():
+            raise ObjectError(f"{label}: included file {file!r} not found (looked for {included_path})")
+        try:
+            included = ElementTree.parse(included_path).getroot()
+        except (ElementTree.ParseError, OSError) as error:
+            raise ObjectError(f"{label}: included file {file!r}: cannot parse ({_one_line(error)})") from None
+        if included.tag not in ("mujocoinclude", "mujoco"):
+            raise ObjectError(f"{label}: included file {file!r} is not MJCF (its root element is "
+                              f"<{included.tag}>)")
+        digest.update(included_path.read_bytes())
+        _expand_includes(included, main_dir, label, digest, depth + 1)
+        element.remove(child)
+        for offset, grandchild in enumerate(list(included)):
+            element.insert(index + offset, grandchild)
+
+
 def _read_mjcf(path: Path, label: str) -> tuple[trimesh.Trimesh, float, tuple | None, str]:
     """(collision mesh in the root body's frame, mass from the geoms (kg), the body's explicit
-    inertial (mass, com, inertia) or None, a digest of the file and its meshes)."""
+    inertial (mass, com, inertia) or None, a digest of the file, the files it includes and its
+    meshes)."""
     try:
         root = ElementTree.parse(path).getroot()
     except (ElementTree.ParseError, OSError) as error:
         raise ObjectError(f"{label}: cannot parse ({_one_line(error)})") from None
     if root.tag != "mujoco":
         raise ObjectError(f"{label}: not an MJCF file (its root element is <{root.tag}>, not <mujoco>)")
-    compiler = root.find("compiler")
-    compiler = compiler.attrib if compiler is not None else {}
+    digest = hashlib.sha256(path.read_bytes())
+    _expand_includes(root, path.parent, label, digest)
+    compiler = {}  # MuJoCo merges every <compiler> element's attributes, the later ones winning
+    for element in root.findall("compiler"):
+        compiler.update(element.attrib)
     degrees = compiler.get("angle", "degree") != "radian"
     base = path.parent
     meshdir = base / compiler.get("meshdir", compiler.get("assetdir", ""))
-    digest = hashlib.sha256(path.read_bytes())
     meshes = {}
     for asset in root.iter("asset"):
         for mesh in asset.findall("mesh"):
@@ -377,12 +418,13 @@ def _read_mjcf(path: Path, label: str) -> tuple[trimesh.Trimesh, float, tuple | 
                 loaded.apply_transform(np.diag([*scale, 1.0]))
             meshes[name] = loaded
             digest.update(mesh_path.read_bytes())
-    worldbody = root.find("worldbody")
-    if worldbody is None:
+    worldbodies = root.findall("worldbody")  # several, once included files are in: MuJoCo merges them
+    if not worldbodies:
         raise ObjectError(f"{label}: the file has no <worldbody>")
     defaults = _mjcf_defaults(root)
     pieces, mass_from_geoms, inertial = [], 0.0, None
-    bodies = worldbody.findall("body")
+    # The world's own geoms (a floor plane, say) are not the object: only bodies are.
+    bodies = [body for worldbody in worldbodies for body in worldbody.findall("body")]
     if len(bodies) != 1:
         raise ObjectError(f"{label}: expected one top-level body, found {len(bodies)}")
 
