@@ -392,3 +392,27 @@ def test_without_pymeshfix_an_open_mesh_says_how_to_enable_the_repair(tmp_path, 
     pytest.importorskip("pymeshfix")
     with pytest.warns(MeshNote, match="closed 1 open surface"):
         assert resolve_user_object(str(holed)).volume == pytest.approx(box.volume, rel=1e-6)  # with it: closed
+
+
+# --- Non-uniform mesh scale in a model file ------------------------------------------------------
+
+
+@pytest.mark.parametrize("scale", ["0.003 0.002 0.001", "-0.003 0.002 0.001"])
+def test_a_urdf_mesh_scaled_unevenly_is_the_scaled_solid(tmp_path, scale):
+    """Ravens fills its object template with ``scale="0.003 0.003 0.001"`` (a 20-unit shape made
+    6 × 6 × 2 cm); a mirroring factor keeps the solid's volume positive."""
+    trimesh.creation.box((20.0, 20.0, 20.0)).export(tmp_path / "shape.obj")
+    path = tmp_path / "shape.urdf"
+    path.write_text(f"""<robot name="shape"><link name="base">
+  <inertial><mass value="0.1"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial>
+  <collision><geometry><mesh filename="shape.obj" scale="{scale}"/></geometry></collision>
+</link></robot>""")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # the placeholder inertia, replaced
+        spec = resolve_user_object(str(path))
+    assert sorted(spec.extents) == pytest.approx([0.02, 0.04, 0.06], abs=1e-6)
+    assert spec.mass == pytest.approx(0.1)
+    # The inertia is the scaled box's at 0.1 kg, not the cube's: about its 6 cm side's axis, m (b² + c²)/12.
+    xx, yy, zz, xy, xz, yz = spec.inertia
+    moments = np.sort(np.linalg.eigvalsh(np.array([[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]])))
+    assert moments[0] == pytest.approx(0.1 * (0.04**2 + 0.02**2) / 12, rel=1e-3)

@@ -88,13 +88,21 @@ def read_triangles(path: Path, label: str) -> trimesh.Trimesh:
     return trimesh.Trimesh(vertices, np.asarray(faces, np.int64), process=False)
 
 
-def _read_mesh(path: Path, label: str, scale: float) -> trimesh.Trimesh:
-    """The triangles of a mesh file as it stores them (:func:`read_triangles`), scaled to metres
-    and turned z up (nothing welded or repaired yet). ObjectError for a flat mesh too."""
+def _read_mesh(path: Path, label: str, scale) -> trimesh.Trimesh:
+    """The triangles of a mesh file as it stores them (:func:`read_triangles`), turned z up and
+    scaled to metres (nothing welded or repaired yet). ObjectError for a flat mesh too.
+
+    `scale` is one factor or three, one per axis of the z-up mesh frame, as a model file's
+    non-uniform ``scale="sx sy sz"`` applies them (Drake's ``Mesh.scale3``); a mirroring scale
+    (an odd number of negative factors) keeps the faces pointing out."""
     mesh = read_triangles(path, label)
-    mesh = trimesh.Trimesh(np.asarray(mesh.vertices) * scale, mesh.faces, process=False)
+    mesh = trimesh.Trimesh(np.asarray(mesh.vertices), mesh.faces, process=False)
     if path.suffix.lower() in _Y_UP_SUFFIXES:
         mesh.apply_transform(trimesh.transformations.rotation_matrix(math.pi / 2, [1.0, 0.0, 0.0]))
+    factors = np.broadcast_to(np.asarray(scale, float), (3,))
+    faces = np.asarray(mesh.faces)
+    mesh = trimesh.Trimesh(np.asarray(mesh.vertices) * factors, faces[:, ::-1] if np.prod(factors) < 0 else faces,
+                           process=False)
     extents = mesh.extents
     if not np.min(extents) > 1e-9 * max(np.max(extents), 1e-300):
         raise ObjectError(f"{label}: mesh has zero volume (it is flat)")
@@ -151,13 +159,19 @@ def _content_digest(path: Path) -> str:
     return digest + "|dae-unit" if path.suffix.lower() == ".dae" else digest
 
 
-def _load_checked_mesh(path: Path, label: str, scale: float, join_gap: float | None = None,
+def _load_checked_mesh(path: Path, label: str, scale, join_gap: float | None = None,
                        keep_largest: bool = False) -> trimesh.Trimesh:
     """:func:`_read_mesh`, then :func:`_solid_from_mesh`, cached by the file's content and the
-    options (a model file's mesh geometry)."""
+    options (a model file's mesh geometry; `scale` one factor or three)."""
     digest = _content_digest(path) if path.is_file() else ""
-    key = hashlib.sha256(f"{digest}|{scale!r}|{join_gap!r}|{keep_largest}".encode()).hexdigest()[:24]
+    key = hashlib.sha256(f"{digest}|{_scale_key(scale)}|{join_gap!r}|{keep_largest}".encode()).hexdigest()[:24]
     return _cached_solid(_read_mesh(path, label, scale), label, key, join_gap, keep_largest)
+
+
+def _scale_key(scale) -> str:
+    """A scale's text for cache keys: a uniform one as its one factor, as before three were allowed."""
+    factors = np.broadcast_to(np.asarray(scale, float), (3,))
+    return repr(float(factors[0])) if np.all(factors == factors[0]) else repr(tuple(float(f) for f in factors))
 
 
 def _lowest_resting_rotation(hull: trimesh.Trimesh, p_Ocm: np.ndarray) -> RotationMatrix:

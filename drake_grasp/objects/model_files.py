@@ -37,7 +37,7 @@ from pydrake.math import RigidTransform, RollPitchYaw, RotationMatrix
 from pydrake.multibody.parsing import Parser
 
 from drake_grasp.objects.mesh_files import (
-    _load_checked_mesh, _model_name, _one_line, object_from_triangles, read_triangles,
+    _load_checked_mesh, _model_name, _one_line, _scale_key, object_from_triangles, read_triangles,
 )
 from drake_grasp.objects import packages, sizes
 from drake_grasp.objects.readable_models import drake_readable_model, quiet_unsupported_elements
@@ -76,12 +76,10 @@ def _piece_from_drake_shape(
         vertices = np.array([hull.vertex(i) for i in range(hull.num_vertices())])
         return [ShapePiece("convex", (), p, rpy, _cached_hull_obj("sdf_convex", vertices))]
     if isinstance(shape, Mesh):
-        scale = np.asarray(shape.scale3())
-        if not np.allclose(scale, scale[0]):
-            raise ObjectError(f"{label}: non-uniform mesh scale is not supported")
-        mesh = _load_checked_mesh(Path(shape.source().path()), label, float(scale[0]))
+        scale = np.asarray(shape.scale3(), float)  # per axis: a model file may scale a mesh unevenly
+        mesh = _load_checked_mesh(Path(shape.source().path()), label, scale)
         key = hashlib.sha256(Path(shape.source().path()).read_bytes()).hexdigest()[:20]
-        paths = _decompose(mesh, f"sdf_mesh-{key}-{float(scale[0])!r}-{max_pieces}", max_pieces, label)
+        paths = _decompose(mesh, f"sdf_mesh-{key}-{_scale_key(scale)}-{max_pieces}", max_pieces, label)
         return [ShapePiece("convex", (), p, rpy, path) for path in paths]
     raise ObjectError(f"{label}: collision shape {type(shape).__name__} is not supported")
 
@@ -94,7 +92,7 @@ def _one_mesh_mass_properties(geometries, label: str) -> tuple[float, np.ndarray
     shape, X_BG = geometries[0]
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # its notes were given when its pieces were made
-        solid = _load_checked_mesh(Path(shape.source().path()), label, float(shape.scale3()[0]))
+        solid = _load_checked_mesh(Path(shape.source().path()), label, np.asarray(shape.scale3(), float))
     R_BG = X_BG.rotation().matrix()
     unit_inertia = np.asarray(solid.moment_inertia, float) / float(solid.mass)
     return float(solid.volume), R_BG @ np.asarray(solid.center_mass) + X_BG.translation(), R_BG @ unit_inertia @ R_BG.T
