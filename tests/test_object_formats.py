@@ -416,3 +416,13 @@ def test_a_urdf_mesh_scaled_unevenly_is_the_scaled_solid(tmp_path, scale):
     xx, yy, zz, xy, xz, yz = spec.inertia
     moments = np.sort(np.linalg.eigvalsh(np.array([[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]])))
     assert moments[0] == pytest.approx(0.1 * (0.04**2 + 0.02**2) / 12, rel=1e-3)
+    # Its pieces are cached under a folder the scale names; Drake's parser must find them there.
+    from pydrake.multibody.plant import AddMultibodyPlantSceneGraph
+    from pydrake.systems.framework import DiagramBuilder
+
+    from drake_grasp.objects.drake_model import AddObject
+
+    plant, scene_graph = AddMultibodyPlantSceneGraph(DiagramBuilder(), 0.001)
+    AddObject(plant, spec)
+    plant.Finalize()
+    assert scene_graph.model_inspector().num_geometries() >= len(spec.pieces)

@@ -169,9 +169,13 @@ def _load_checked_mesh(path: Path, label: str, scale, join_gap: float | None = N
 
 
 def _scale_key(scale) -> str:
-    """A scale's text for cache keys: a uniform one as its one factor, as before three were allowed."""
+    """A scale's text for cache keys and the cache's folder names: a uniform one as its one factor, as
+    before three were allowed; three as ``0.003x0.003x0.001`` (no brackets, commas or spaces: the
+    folder is named in a file URI that Drake's parser must resolve)."""
     factors = np.broadcast_to(np.asarray(scale, float), (3,))
-    return repr(float(factors[0])) if np.all(factors == factors[0]) else repr(tuple(float(f) for f in factors))
+    if np.all(factors == factors[0]):
+        return repr(float(factors[0]))
+    return "x".join(repr(float(f)) for f in factors)
 
 
 def _lowest_resting_rotation(hull: trimesh.Trimesh, p_Ocm: np.ndarray) -> RotationMatrix:
