@@ -10,8 +10,7 @@ from drake_grasp.primitives.decision import choose_shape
 from drake_grasp.station import ObjectPlacement, object_rest_pose
 from drake_grasp.primitives.camera_model import CameraIntrinsics
 from drake_grasp.trial.sensing import (LIFTED_FRACTION, depth_change, in_hand_depth, in_hand_shift, in_hand_turn,
-                                       sense_hold,
-                                      too_near_share)
+                                       lift_start_depth, sense_hold, too_near_share)
 from drake_grasp.trial.spec import TrialSpec
 
 
@@ -197,6 +196,28 @@ def test_a_tall_object_left_on_the_table_is_not_held_though_its_sides_stand_high
     sensed = sense_hold(sides, top, lift, table, lift_depths=(at_lift, left))
     assert not sensed.held and sensed.rose_short == pytest.approx(lift)
     assert sense_hold(sides, top, lift, table, lift_depths=(at_lift, risen)).held
+
+
+def test_an_object_pressed_into_the_camera_as_the_lift_began_and_left_behind_is_not_held():
+    # A 13.7 cm piggy bank under the spherical grasp's palm: as the lift began, its pixels read "too
+    # near" (0); at the end, left on the table, 12 cm below the camera. Its visible sides stand over the
+    # bottom test's threshold. The too-near pixels are at most the camera's nearest range (2 cm) deep.
+    top, lift, table, near = 0.134, 0.10, 0.0, 0.02
+    sides = np.column_stack([np.zeros(50), np.zeros(50), np.linspace(0.101, 0.134, 50)])
+    mask = np.zeros((40, 40), bool)
+    mask[5:35, 5:35] = True
+    pressed = np.where(mask, 0.0, 0.5)
+    at_lift = lift_start_depth(pressed, mask, near)
+    assert np.all(at_lift[mask] == near) and np.all(np.isnan(at_lift[~mask]))
+    left = in_hand_depth(np.full((40, 40), 0.12), mask)
+    assert sense_hold(sides, top, lift, table, lift_depths=(in_hand_depth(pressed, mask), left)).held  # no pixel to compare
+    sensed = sense_hold(sides, top, lift, table, lift_depths=(at_lift, left))
+    assert not sensed.held and sensed.rose_short == pytest.approx(0.12 - near)
+    # Held, it stays pressed into the view: nothing to compare, and the other tests stand.
+    assert sense_hold(sides, top, lift, table, lift_depths=(at_lift, in_hand_depth(pressed, mask)), too_near=0.56).held
+    # Pixels seen as the lift began keep their depth.
+    seen = np.where(mask, 0.05, 0.5)
+    assert np.all(lift_start_depth(seen, mask, near)[mask] == 0.05)
 
 
 def test_a_later_attempt_finds_the_object_where_the_last_one_left_it():

@@ -227,20 +227,24 @@ class _Watch:
                 self.snapshot = last
             if phase_before == GraspPhase.CLOSE and phase == GraspPhase.LIFT:
                 self.contacts_after_close, _ = self.touching()
-                self.executed.depth_at_lift = self.object_depth()
+                self.executed.depth_at_lift = self.object_depth(lift_start=True)
             if phase_before != GraspPhase.HOLD and phase == GraspPhase.HOLD:
                 self.X_PO_hold = self.X_PO()
                 self.rise_hold = float(p_WO[2] - self.X_WO.translation()[2])
                 self.executed.depth_at_hold = self.object_depth()
 
-    def object_depth(self) -> np.ndarray | None:
-        """The object's depth image in the wrist camera now (`sensing.in_hand_depth`, m), or None on a
-        station without the camera."""
+    def object_depth(self, lift_start: bool = False) -> np.ndarray | None:
+        """The object's depth image in the wrist camera now (`sensing.in_hand_depth`, m; as the lift
+        starts, its pixels too near to range at the camera's nearest range: `sensing.lift_start_depth`),
+        or None on a station without the camera."""
         if not self.station.diagram.HasOutputPort("camera.depth_image"):
             return None
-        from drake_grasp.trial.sensing import in_hand_depth, object_depth_image
+        from drake_grasp.trial.sensing import in_hand_depth, lift_start_depth, object_depth_image
 
-        return in_hand_depth(*object_depth_image(self.station, self.context))
+        image = object_depth_image(self.station, self.context)
+        if lift_start:
+            return lift_start_depth(*image, near=float(self.station.scenario.camera.z_near))
+        return in_hand_depth(*image)
 
     def failed(self, e: Exception) -> None:
         """The simulation raised `e`: the trial fails with it."""

@@ -173,6 +173,21 @@ def in_hand_depth(depth: np.ndarray, mask: np.ndarray) -> np.ndarray:
     return np.where(mask & np.isfinite(depth) & (depth > 0), depth, np.nan)
 
 
+def lift_start_depth(depth: np.ndarray, mask: np.ndarray, near: float) -> np.ndarray:
+    """The object's depth image as the lift begins (`in_hand_depth`), with its pixels nearer than the
+    camera ranges at `near` (m, the camera's nearest range): their true depth is at most that.
+
+    The hand has just closed on the object, and a palm on a large one presses the camera into it:
+    a 3.8 kg piggy bank 13.7 cm tall, held by the spherical grasp, filled the view too near to range,
+    so `depth_change` had no pixel to compare and the object, left on the table while the hand rose
+    10 cm, was taken for held (its visible sides stood over the bottom test's 5 cm). Seen at the end
+    10 cm below the camera, those pixels grew by at least 10 cm less the bound; an object that rose
+    with the hand stays too near and drops out of the comparison."""
+    bounded = np.where(mask & (np.asarray(depth, float) == 0.0), float(near), np.nan)
+    seen = in_hand_depth(depth, mask)
+    return np.where(np.isfinite(seen), seen, bounded)
+
+
 def depth_change(start: np.ndarray, end: np.ndarray, min_pixels: int = MIN_COMMON_PIXELS) -> float:
     """How far the object moved along the camera's axis between two of its depth images (`in_hand_depth`,
     m; NaN off the object): the median change over the pixels that see it in both, m (NaN when fewer
