@@ -189,7 +189,7 @@ def test_a_vtk_tetrahedral_mesh_is_read_as_its_outward_boundary():
 
 
 @pytest.mark.parametrize("edit, message", [
-    (lambda t: t.replace("ASCII", "BINARY"), "only ASCII legacy VTK is read"),
+    (lambda t: t.replace("ASCII", "BINARY"), "BINARY VTK unstructured grid; only ASCII ones are read"),
     (lambda t: t.replace("UNSTRUCTURED_GRID", "POLYDATA"), "not DATASET UNSTRUCTURED_GRID"),
     (lambda t: t[:t.index("CELLS")], "no CELLS section"),
     (lambda t: t[:t.index("CELL_TYPES") - 10], r"CELLS section is truncated"),
@@ -426,3 +426,89 @@ def test_a_urdf_mesh_scaled_unevenly_is_the_scaled_solid(tmp_path, scale):
     AddObject(plant, spec)
     plant.Finalize()
     assert scene_graph.model_inspector().num_geometries() >= len(spec.pieces)
+
+
+# --- VTK surfaces (DATASET POLYDATA), and specks of scan noise -----------------------------------
+
+from drake_grasp.objects import vtk_polydata  # noqa: E402
+
+
+def _quad_cube(size: float):
+    """A cube of `size` (file units) as 8 points and 6 outward quads, as PCL writes a scan's polygons."""
+    points = np.array([[x, y, z] for z in (0, size) for y in (0, size) for x in (0, size)], float)
+    quads = np.array([[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]])
+    return points, quads
+
+
+@pytest.mark.parametrize("binary", [True, False])
+def test_a_vtk_surface_ascii_or_binary_in_millimetres_is_the_solid(tmp_path, binary):
+    """PCL's binary POLYDATA in millimetres (the Columbia grasping group's scans): read, then --scale."""
+    points, quads = _quad_cube(50.0)
+    path = tmp_path / "block.vtk"
+    path.write_bytes(vtk_polydata.polydata_bytes(points, quads, binary=binary))
+    vertices, faces = vtk_polydata.read_polydata(path.read_bytes(), "block.vtk")
+    assert len(faces) == 12 and trimesh.Trimesh(vertices, faces).volume == pytest.approx(50.0**3)
+    spec = resolve_user_object(str(path), scale=0.001)
+    assert sorted(spec.extents) == pytest.approx([0.05] * 3, abs=1e-6)
+
+
+def test_a_vtk5_surface_with_offsets_and_triangle_strips_is_read():
+    points, quads = _quad_cube(1.0)
+    polygons = quads[:4]
+    offsets = np.arange(0, 4 * len(polygons) + 1, 4)
+    # The last two faces as one strip each: quad (a, b, c, d) is the strip a, b, d, c.
+    strips = [[q[0], q[1], q[3], q[2]] for q in quads[4:]]
+    text = "\n".join([
+        "# vtk DataFile Version 5.1", "vtk output", "ASCII", "DATASET POLYDATA", f"POINTS {len(points)} float",
+        " ".join(repr(float(v)) for v in points.ravel()),
+        "METADATA", "INFORMATION 0", "",
+        f"POLYGONS {len(offsets)} {polygons.size}", "OFFSETS vtktypeint64", " ".join(map(str, offsets)),
+        "CONNECTIVITY vtktypeint64", " ".join(map(str, polygons.ravel())),
+        f"TRIANGLE_STRIPS 3 8", "OFFSETS vtktypeint64", "0 4 8", "CONNECTIVITY vtktypeint64",
+        " ".join(str(int(i)) for s in strips for i in s),
+        f"POINT_DATA {len(points)}", "NORMALS Normals float", "0 0 1 " * len(points)]) + "\n"
+    vertices, faces = vtk_polydata.read_polydata(text.encode(), "cube.vtk")
+    mesh = trimesh.Trimesh(vertices, faces)
+    assert len(faces) == 12 and mesh.is_watertight and mesh.volume == pytest.approx(1.0)
+
+
+@pytest.mark.parametrize("edit, message", [
+    (lambda b: b[:-60], r"POLYGONS section is truncated"),
+    (lambda b: b.replace(b"DATASET POLYDATA", b"DATASET STRUCTURED_POINTS"), r"not a legacy VTK file|unstructured"),
+    (lambda b: b.split(b"\nPOLYGONS")[0] + b"\n", r"no polygons or triangle strips"),
+    (lambda b: b.replace(b"BINARY", b"HEX"), r"encoding 'HEX'"),
+])
+def test_a_damaged_vtk_surface_is_refused_in_one_line(tmp_path, capsys, edit, message):
+    points, quads = _quad_cube(0.05)
+    path = tmp_path / "bad.vtk"
+    path.write_bytes(edit(vtk_polydata.polydata_bytes(points, quads, binary=True)))
+    assert cli.main(["objects", "check", str(path)]) == 2
+    (line,) = capsys.readouterr().err.strip().splitlines()
+    assert __import__("re").search(message, line), line
+
+
+def test_a_binary_tetrahedral_vtk_names_its_encoding_not_a_missing_header(tmp_path, capsys):
+    path = tmp_path / "volume.vtk"
+    path.write_bytes(b"# vtk DataFile Version 3.0\nvolume\nBINARY\nDATASET UNSTRUCTURED_GRID\nPOINTS 4 float\n"
+                     + np.zeros(12, ">f4").tobytes() + b"\xff\xfe")
+    assert cli.main(["objects", "check", str(path)]) == 2
+    (line,) = capsys.readouterr().err.strip().splitlines()
+    assert "BINARY VTK unstructured grid" in line and "first line" not in line, line
+
+
+def test_specks_of_scan_noise_are_left_out_but_a_second_part_is_not(tmp_path):
+    body = trimesh.creation.icosphere(subdivisions=3, radius=0.04)
+    specks = [trimesh.creation.box((0.002, 0.001, 0.001)).apply_translation((0.05 + 0.01 * i, 0.0, 0.0))
+              for i in range(3)]
+    path = tmp_path / "scan.stl"
+    trimesh.util.concatenate([body, *specks]).export(path)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        spec = resolve_user_object(str(path))
+    assert max(spec.extents) == pytest.approx(0.08, abs=0.002)  # the sphere alone
+    assert any("left out 3 specks" in str(w.message) for w in caught)
+    # A 1.5 cm cube 2 cm away is a part (0.5 % of the volume or more), not noise: still refused.
+    part = trimesh.creation.box((0.015, 0.015, 0.015)).apply_translation((0.07, 0.0, 0.0))
+    trimesh.util.concatenate([body, part]).export(path)
+    with pytest.raises(ObjectError, match="2 separate parts"):
+        resolve_user_object(str(path))

@@ -12,6 +12,8 @@ content. Mass properties come from the solid itself.
 
 from __future__ import annotations
 
+import dataclasses
+
 import hashlib
 import json
 import math
@@ -26,7 +28,7 @@ from pydrake.common.eigen_geometry import AngleAxis
 from pydrake.math import RollPitchYaw, RotationMatrix
 from scipy.spatial import ConvexHull, QhullError
 
-from drake_grasp.objects import collada_mesh, mujoco_msh, repair, sizes, vtk_mesh
+from drake_grasp.objects import collada_mesh, mujoco_msh, repair, sizes, vtk_mesh, vtk_polydata
 from drake_grasp.objects.pieces import IMPORT_VERSION, _decompose
 from drake_grasp.objects.spec import (
     COACD_THRESHOLD, CONVEXITY_TOLERANCE, DEFAULT_DENSITY, DEFAULT_MAX_PIECES, MAX_FACES, MeshNote,
@@ -56,7 +58,7 @@ _Y_UP_SUFFIXES = (".gltf", ".glb")
 def read_triangles(path: Path, label: str) -> trimesh.Trimesh:
     """The triangles a mesh file stores, in its own units and frame: a MuJoCo ``.msh``
     (:mod:`drake_grasp.objects.mujoco_msh`), the boundary of Drake's tetrahedral ``.vtk``
-    (:mod:`drake_grasp.objects.vtk_mesh`), or any format trimesh reads. A COLLADA ``.dae`` declares
+    (:mod:`drake_grasp.objects.vtk_mesh`) or a VTK surface (:mod:`drake_grasp.objects.vtk_polydata`), or any format trimesh reads. A COLLADA ``.dae`` declares
     its unit, and comes in metres (:mod:`drake_grasp.objects.collada_mesh`). ObjectError (one line) for a
     file that is missing, unreadable or damaged, has no triangles or has vertices that are not finite."""
     if not path.exists():
@@ -69,7 +71,11 @@ def read_triangles(path: Path, label: str) -> trimesh.Trimesh:
     elif suffix == ".dae":
         vertices, faces = collada_mesh.read_dae(path.read_bytes(), label)
     elif suffix == ".vtk":
-        vertices, faces = vtk_mesh.boundary_surface(*vtk_mesh.read_vtk(path.read_bytes(), label))
+        data = path.read_bytes()
+        if vtk_polydata.is_polydata(data):  # a surface (PCL's and VTK's scans), ASCII or binary
+            vertices, faces = vtk_polydata.read_polydata(data, label)
+        else:  # Drake's tetrahedral volume
+            vertices, faces = vtk_mesh.boundary_surface(*vtk_mesh.read_vtk(data, label))
     else:
         try:
             mesh = trimesh.load(path, force="mesh", process=False)
@@ -228,6 +234,14 @@ def _user_solid(shells: list[trimesh.Trimesh], label: str, keep_largest: bool,
     from drake_grasp.objects.solid import solid_of_shells
 
     solid = solid_of_shells(shells, join_gap)
+    specks = _scan_specks(solid)
+    if specks:
+        largest = max(float(np.max(c.mesh.extents)) for c in specks) * 1000
+        share = 100 * sum(c.volume for c in specks) / sum(c.volume for c in solid.components)
+        warnings.warn(f"{label}: left out {len(specks)} speck{'s' if len(specks) != 1 else ''} apart from the object "
+                      f"(scan noise: together {share:.2g} % of the volume, the largest {largest:.2g} mm across)",
+                      MeshNote, stacklevel=3)
+        solid = dataclasses.replace(solid, components=tuple(c for c in solid.components if c not in specks))
     if len(solid.components) > 1:
         count, gap, smallest = len(solid.components), solid.gap * 1000, solid.smallest_gap * 1000
         if not keep_largest:
@@ -236,14 +250,32 @@ def _user_solid(shells: list[trimesh.Trimesh], label: str, keep_largest: bool,
                               "--join-gap or keep the largest with --largest-component")
         warnings.warn(f"{label}: kept the largest of {count} separate parts (smallest gap {smallest:.1f} mm)",
                       MeshNote, stacklevel=3)
-    elif len(shells) > 1:
+    elif len(solid.components[0].shells) > 1:
         bridged = (f"gaps up to {solid.largest_bridged_gap * 1000:.2f} mm bridged" if solid.largest_bridged_gap > 1e-5
                    else "they touch, overlap or nest")
         hollow = (f"; {solid.cavities} inner shell{'s' if solid.cavities != 1 else ''} wound inward: "
                   "a cavity, subtracted" if solid.cavities else "")
-        warnings.warn(f"{label}: {len(shells)} closed shells within the join gap ({solid.gap * 1000:.3g} mm; {bridged}) "
+        joined = len(solid.components[0].shells)
+        warnings.warn(f"{label}: {joined} closed shells within the join gap ({solid.gap * 1000:.3g} mm; {bridged}) "
                       f"form one object (mass and inertia from their union{hollow})", MeshNote, stacklevel=3)
     return solid.mesh
+
+
+# A separate part this small beside the object is a speck of scan noise, not a part (m³ shares of the
+# whole). Scanned objects keep such specks: the Columbia grasping group's scanned apple has 22 closed
+# shells of 4-16 triangles, 1-10 mm across, beside its 5,922-triangle body, and its red mug 10.
+SPECK_SHARE = 0.005  # of the volume, each
+SPECKS_SHARE = 0.01  # of the volume, all together
+
+
+def _scan_specks(solid) -> list:
+    """The components of `solid` (largest first) that are specks of scan noise apart from the object:
+    each under `SPECK_SHARE` of the volume and all of them together under `SPECKS_SHARE`; [] otherwise."""
+    if len(solid.components) < 2:
+        return []
+    total = sum(c.volume for c in solid.components)
+    specks = [c for c in solid.components[1:] if c.volume < SPECK_SHARE * total]
+    return specks if sum(c.volume for c in specks) < SPECKS_SHARE * total else []
 
 
 def _simplified(mesh: trimesh.Trimesh, label: str) -> trimesh.Trimesh:

@@ -21,6 +21,7 @@ from __future__ import annotations
 import numpy as np
 
 from drake_grasp.objects.spec import ObjectError
+from drake_grasp.objects.vtk_polydata import vtk_header
 
 VTK_TETRA = 10
 _SECTIONS = ("POINTS", "CELLS", "CELL_TYPES", "POINT_DATA", "CELL_DATA", "FIELD", "METADATA")
@@ -33,20 +34,23 @@ def read_vtk(data: bytes, label: str) -> tuple[np.ndarray, np.ndarray]:
     not an unstructured grid, is shorter than its counts say, has points that are not finite, cell
     indices out of range, or cells other than tetrahedra.
     """
+    header = vtk_header(data)  # the header alone: a binary file's data is not text
+    if header is None:
+        raise ObjectError(f"{label}: not a legacy VTK file (its first line is not '# vtk DataFile Version ...')")
     try:
         text = data.decode("ascii")
     except UnicodeDecodeError:
         text = None
     lines = (text or "").split("\n", 3)
-    if text is None or len(lines) < 4 or not lines[0].startswith("# vtk DataFile Version"):
-        raise ObjectError(f"{label}: not a legacy VTK file (its first line is not '# vtk DataFile Version ...')")
+    if text is None and header[1] == "ASCII":
+        raise ObjectError(f"{label}: an ASCII VTK file holding bytes that are not ASCII text")
     try:
         version = float(lines[0].split("Version", 1)[1].split()[0])
     except (IndexError, ValueError):
         version = 2.0
-    if lines[2].strip().upper() != "ASCII":
-        raise ObjectError(f"{label}: a {lines[2].strip() or 'non-ASCII'} VTK file; only ASCII legacy VTK is read "
-                          "(as Drake writes it)")
+    if header[1] != "ASCII":
+        raise ObjectError(f"{label}: a {header[1] or 'non-ASCII'} VTK unstructured grid; only ASCII ones are read "
+                          "(as Drake writes them; surfaces, DATASET POLYDATA, are read ASCII or binary)")
     tokens = lines[3].split()
     if len(tokens) < 2 or tokens[0].upper() != "DATASET" or tokens[1].upper() != "UNSTRUCTURED_GRID":
         found = " ".join(tokens[:2]) or "nothing"
