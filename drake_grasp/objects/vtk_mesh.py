@@ -21,7 +21,7 @@ from __future__ import annotations
 import numpy as np
 
 from drake_grasp.objects.spec import ObjectError
-from drake_grasp.objects.vtk_polydata import vtk_header
+from drake_grasp.objects.vtk_polydata import counted_cells, is_number, offset_cells, vtk_header
 
 VTK_TETRA = 10
 _SECTIONS = ("POINTS", "CELLS", "CELL_TYPES", "POINT_DATA", "CELL_DATA", "FIELD", "METADATA")
@@ -131,7 +131,7 @@ class _Tokens:
         try:
             values = np.array(chunk, dtype=float)
         except ValueError:
-            bad = next(t for t in chunk if not _is_number(t))
+            bad = next(t for t in chunk if not is_number(t))
             raise ObjectError(f"{self.label}: VTK {section} section holds {bad!r}, not a number") from None
         self.i += count
         if dtype is not float:
@@ -139,14 +139,6 @@ class _Tokens:
                 raise ObjectError(f"{self.label}: VTK {section} section holds a fraction where an index belongs")
             return values.astype(dtype)
         return values
-
-
-def _is_number(text: str) -> bool:
-    try:
-        float(text)
-    except ValueError:
-        return False
-    return True
 
 
 def _cells(reader: _Tokens, version: float) -> list[np.ndarray]:
@@ -164,19 +156,8 @@ def _cells(reader: _Tokens, version: float) -> list[np.ndarray]:
                 connectivity = reader.numbers(second, np.int64, "CONNECTIVITY")
         if offsets is None or connectivity is None:
             raise ObjectError(f"{reader.label}: VTK 5 CELLS section without OFFSETS and CONNECTIVITY")
-        if len(offsets) == 0 or offsets[0] != 0 or offsets[-1] != len(connectivity) or np.any(np.diff(offsets) < 0):
-            raise ObjectError(f"{reader.label}: VTK OFFSETS do not index the CONNECTIVITY array")
-        return [connectivity[a:b] for a, b in zip(offsets[:-1], offsets[1:])]
-    flat = reader.numbers(second, np.int64, "CELLS")
-    cells, i = [], 0
-    for _ in range(first):
-        if i >= len(flat) or flat[i] < 0 or i + 1 + flat[i] > len(flat):
-            raise ObjectError(f"{reader.label}: VTK CELLS section does not hold the {first:,} cells it counts")
-        cells.append(flat[i + 1:i + 1 + flat[i]])
-        i += 1 + int(flat[i])
-    if i != len(flat):
-        raise ObjectError(f"{reader.label}: VTK CELLS size {second:,} disagrees with its {first:,} cells")
-    return cells
+        return offset_cells(offsets, connectivity, reader.label, "CELLS")
+    return counted_cells(reader.numbers(second, np.int64, "CELLS"), first, second, reader.label, "CELLS")
 
 
 def boundary_surface(points: np.ndarray, tets: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -168,7 +168,7 @@ class _Cursor:
         try:
             return np.array(words, dtype=float)
         except ValueError:
-            bad = next(w for w in words if not _is_number(w))
+            bad = next(w for w in words if not is_number(w))
             raise ObjectError(f"{self.label}: VTK {section} section holds {bad!r}, not a number") from None
 
     def skip_metadata(self) -> None:
@@ -177,7 +177,8 @@ class _Cursor:
         self.i = len(self.data) if end < 0 else end + 2
 
 
-def _is_number(text: str) -> bool:
+def is_number(text: str) -> bool:
+    """Whether a word of a VTK file reads as a number (for naming the one that does not)."""
     try:
         float(text)
     except ValueError:
@@ -198,19 +199,30 @@ def _cells(cursor: _Cursor, section: str, version: float) -> list[np.ndarray]:
                 raise ObjectError(f"{cursor.label}: VTK 5 {section} section without OFFSETS and CONNECTIVITY")
             arrays[name] = _indices(cursor.numbers(first if name == "OFFSETS" else second, kind, name), cursor.label,
                                     name)
-        offsets, connectivity = arrays["OFFSETS"], arrays["CONNECTIVITY"]
-        if len(offsets) == 0 or offsets[0] != 0 or offsets[-1] != len(connectivity) or np.any(np.diff(offsets) < 0):
-            raise ObjectError(f"{cursor.label}: VTK {section} OFFSETS do not index the CONNECTIVITY array")
-        return [connectivity[a:b] for a, b in zip(offsets[:-1], offsets[1:])]
-    flat = _indices(cursor.numbers(second, "int", section), cursor.label, section)
+        return offset_cells(arrays["OFFSETS"], arrays["CONNECTIVITY"], cursor.label, section)
+    return counted_cells(_indices(cursor.numbers(second, "int", section), cursor.label, section), first, second,
+                         cursor.label, section)
+
+
+def offset_cells(offsets: np.ndarray, connectivity: np.ndarray, label: str, section: str) -> list[np.ndarray]:
+    """A version 5 cell section's point lists from its OFFSETS and CONNECTIVITY arrays (ObjectError if
+    the offsets do not index the connectivity). Shared with the tetrahedral reader."""
+    if len(offsets) == 0 or offsets[0] != 0 or offsets[-1] != len(connectivity) or np.any(np.diff(offsets) < 0):
+        raise ObjectError(f"{label}: VTK {section} OFFSETS do not index the CONNECTIVITY array")
+    return [connectivity[a:b] for a, b in zip(offsets[:-1], offsets[1:])]
+
+
+def counted_cells(flat: np.ndarray, first: int, second: int, label: str, section: str) -> list[np.ndarray]:
+    """The point lists of a cell section of versions 2-4: `first` counted lists (k i0 ... ik-1) in
+    `second` numbers `flat` (ObjectError if they disagree). Shared with the tetrahedral reader."""
     cells, i = [], 0
     for _ in range(first):
         if i >= len(flat) or flat[i] < 0 or i + 1 + flat[i] > len(flat):
-            raise ObjectError(f"{cursor.label}: VTK {section} section does not hold the {first:,} cells it counts")
+            raise ObjectError(f"{label}: VTK {section} section does not hold the {first:,} cells it counts")
         cells.append(flat[i + 1:i + 1 + flat[i]])
         i += 1 + int(flat[i])
     if i != len(flat):
-        raise ObjectError(f"{cursor.label}: VTK {section} size {second:,} disagrees with its {first:,} cells")
+        raise ObjectError(f"{label}: VTK {section} size {second:,} disagrees with its {first:,} cells")
     return cells
 
 
