@@ -13,7 +13,6 @@ content. Mass properties come from the solid itself.
 from __future__ import annotations
 
 import dataclasses
-
 import hashlib
 import json
 import math
@@ -102,13 +101,10 @@ def _read_mesh(path: Path, label: str, scale) -> trimesh.Trimesh:
     non-uniform ``scale="sx sy sz"`` applies them (Drake's ``Mesh.scale3``); a mirroring scale
     (an odd number of negative factors) keeps the faces pointing out."""
     mesh = read_triangles(path, label)
-    mesh = trimesh.Trimesh(np.asarray(mesh.vertices), mesh.faces, process=False)
     if path.suffix.lower() in _Y_UP_SUFFIXES:
         mesh.apply_transform(trimesh.transformations.rotation_matrix(math.pi / 2, [1.0, 0.0, 0.0]))
-    factors = np.broadcast_to(np.asarray(scale, float), (3,))
-    faces = np.asarray(mesh.faces)
-    mesh = trimesh.Trimesh(np.asarray(mesh.vertices) * factors, faces[:, ::-1] if np.prod(factors) < 0 else faces,
-                           process=False)
+    # trimesh reverses the faces' winding under a mirroring transform, so they keep pointing out.
+    mesh.apply_transform(np.diag([*np.broadcast_to(np.asarray(scale, float), (3,)), 1.0]))
     extents = mesh.extents
     if not np.min(extents) > 1e-9 * max(np.max(extents), 1e-300):
         raise ObjectError(f"{label}: mesh has zero volume (it is flat)")
@@ -241,7 +237,7 @@ def _user_solid(shells: list[trimesh.Trimesh], label: str, keep_largest: bool,
         warnings.warn(f"{label}: left out {len(specks)} speck{'s' if len(specks) != 1 else ''} apart from the object "
                       f"(scan noise: together {share:.2g} % of the volume, the largest {largest:.2g} mm across)",
                       MeshNote, stacklevel=3)
-        solid = dataclasses.replace(solid, components=tuple(c for c in solid.components if c not in specks))
+        solid = dataclasses.replace(solid, components=solid.components[:-len(specks)])
     if len(solid.components) > 1:
         count, gap, smallest = len(solid.components), solid.gap * 1000, solid.smallest_gap * 1000
         if not keep_largest:
@@ -270,7 +266,8 @@ SPECKS_SHARE = 0.01  # of the volume, all together
 
 def _scan_specks(solid) -> list:
     """The components of `solid` (largest first) that are specks of scan noise apart from the object:
-    each under `SPECK_SHARE` of the volume and all of them together under `SPECKS_SHARE`; [] otherwise."""
+    each under `SPECK_SHARE` of the volume and all of them together under `SPECKS_SHARE`; [] otherwise.
+    Being the smallest, they are the components' tail."""
     if len(solid.components) < 2:
         return []
     total = sum(c.volume for c in solid.components)

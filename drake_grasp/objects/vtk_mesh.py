@@ -21,7 +21,7 @@ from __future__ import annotations
 import numpy as np
 
 from drake_grasp.objects.spec import ObjectError
-from drake_grasp.objects.vtk_polydata import counted_cells, is_number, offset_cells, vtk_header
+from drake_grasp.objects.vtk_polydata import check_indices, counted_cells, is_number, offset_cells, vtk_header
 
 VTK_TETRA = 10
 _SECTIONS = ("POINTS", "CELLS", "CELL_TYPES", "POINT_DATA", "CELL_DATA", "FIELD", "METADATA")
@@ -37,20 +37,17 @@ def read_vtk(data: bytes, label: str) -> tuple[np.ndarray, np.ndarray]:
     header = vtk_header(data)  # the header alone: a binary file's data is not text
     if header is None:
         raise ObjectError(f"{label}: not a legacy VTK file (its first line is not '# vtk DataFile Version ...')")
-    try:
-        text = data.decode("ascii")
-    except UnicodeDecodeError:
-        text = None
-    lines = (text or "").split("\n", 3)
-    if text is None and header[1] == "ASCII":
-        raise ObjectError(f"{label}: an ASCII VTK file holding bytes that are not ASCII text")
-    try:
-        version = float(lines[0].split("Version", 1)[1].split()[0])
-    except (IndexError, ValueError):
-        version = 2.0
     if header[1] != "ASCII":
         raise ObjectError(f"{label}: a {header[1] or 'non-ASCII'} VTK unstructured grid; only ASCII ones are read "
                           "(as Drake writes them; surfaces, DATASET POLYDATA, are read ASCII or binary)")
+    try:
+        lines = data.decode("ascii").split("\n", 3)
+    except UnicodeDecodeError:
+        raise ObjectError(f"{label}: an ASCII VTK file holding bytes that are not ASCII text") from None
+    try:
+        version = float(header[0].split("Version", 1)[1].split()[0])
+    except (IndexError, ValueError):
+        version = 2.0
     tokens = lines[3].split()
     if len(tokens) < 2 or tokens[0].upper() != "DATASET" or tokens[1].upper() != "UNSTRUCTURED_GRID":
         found = " ".join(tokens[:2]) or "nothing"
@@ -91,10 +88,7 @@ def read_vtk(data: bytes, label: str) -> tuple[np.ndarray, np.ndarray]:
     if not cells:
         raise ObjectError(f"{label}: VTK file has no tetrahedra")
     tets = np.asarray(cells, np.int64)
-    out = (tets < 0) | (tets >= len(points))
-    if np.any(out):
-        raise ObjectError(f"{label}: {int(np.count_nonzero(out))} VTK cell indices out of range (e.g. "
-                          f"{int(tets[out][0])}; points are 0 to {len(points) - 1})")
+    check_indices(tets, len(points), label, "cell")
     return points, tets
 
 

@@ -103,11 +103,17 @@ def read_polydata(data: bytes, label: str) -> tuple[np.ndarray, np.ndarray]:
     if not triangles:
         raise ObjectError(f"{label}: VTK file holds no polygons or triangle strips: no surface (a point cloud?)")
     faces = np.vstack(triangles).astype(np.int64)
-    out = (faces < 0) | (faces >= len(points))
-    if np.any(out):
-        raise ObjectError(f"{label}: {int(np.count_nonzero(out))} VTK polygon indices out of range (e.g. "
-                          f"{int(faces[out][0])}; points are 0 to {len(points) - 1})")
+    check_indices(faces, len(points), label, "polygon")
     return points, faces
+
+
+def check_indices(indices: np.ndarray, points: int, label: str, kind: str) -> None:
+    """ObjectError naming how many of a VTK file's `kind` (cell, polygon) indices fall outside its
+    `points` points. Shared with the tetrahedral reader."""
+    out = (indices < 0) | (indices >= points)
+    if np.any(out):
+        raise ObjectError(f"{label}: {int(np.count_nonzero(out))} VTK {kind} indices out of range (e.g. "
+                          f"{int(indices[out][0])}; points are 0 to {points - 1})")
 
 
 class _Cursor:
