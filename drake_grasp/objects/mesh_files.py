@@ -2,7 +2,8 @@
 split into convex pieces for contact and rested on a stable face.
 
 A mesh file (any format trimesh reads: OBJ, STL, PLY, OFF, glTF/GLB; MuJoCo's binary ``.msh``;
-Drake's tetrahedral ``.vtk``, by its boundary surface; COLLADA ``.dae``, in the unit it declares) is read as it stores its triangles (`--scale`,
+Drake's tetrahedral ``.vtk``, by its boundary surface; COLLADA ``.dae``, in the unit it declares; Open
+Inventor ``.iv`` and VRML ``.wrl``, GraspIt!'s geometry) is read as it stores its triangles (`--scale`,
 glTF turned z up), repaired (:mod:`drake_grasp.objects.repair`), its shells joined into one rigid
 object (:mod:`drake_grasp.objects.solid`), checked for a size the hand can grasp
 (:mod:`drake_grasp.objects.sizes`), simplified if dense and decomposed into convex pieces
@@ -27,7 +28,7 @@ from pydrake.common.eigen_geometry import AngleAxis
 from pydrake.math import RollPitchYaw, RotationMatrix
 from scipy.spatial import ConvexHull, QhullError
 
-from drake_grasp.objects import collada_mesh, mujoco_msh, repair, sizes, vtk_mesh, vtk_polydata
+from drake_grasp.objects import collada_mesh, inventor_mesh, mujoco_msh, repair, sizes, vtk_mesh, vtk_polydata
 from drake_grasp.objects.pieces import IMPORT_VERSION, _decompose
 from drake_grasp.objects.spec import (
     COACD_THRESHOLD, CONVEXITY_TOLERANCE, DEFAULT_DENSITY, DEFAULT_MAX_PIECES, MAX_FACES, MeshNote,
@@ -52,20 +53,28 @@ def _model_name(text: str) -> str:
 
 # Formats whose files are Y up (glTF 2.0 specifies +Y up, metres): turned so that their up is z.
 _Y_UP_SUFFIXES = (".gltf", ".glb")
+# Open Inventor and VRML (GraspIt!'s geometry; some of its VRML files are named .IV): read by their header.
+INVENTOR_SUFFIXES = (".iv", ".wrl", ".vrml")
 
 
-def read_triangles(path: Path, label: str) -> trimesh.Trimesh:
+def read_triangles(path: Path, label: str, file_type: str | None = None) -> trimesh.Trimesh:
     """The triangles a mesh file stores, in its own units and frame: a MuJoCo ``.msh``
     (:mod:`drake_grasp.objects.mujoco_msh`), the boundary of Drake's tetrahedral ``.vtk``
-    (:mod:`drake_grasp.objects.vtk_mesh`) or a VTK surface (:mod:`drake_grasp.objects.vtk_polydata`), or any format trimesh reads. A COLLADA ``.dae`` declares
-    its unit, and comes in metres (:mod:`drake_grasp.objects.collada_mesh`). ObjectError (one line) for a
-    file that is missing, unreadable or damaged, has no triangles or has vertices that are not finite."""
+    (:mod:`drake_grasp.objects.vtk_mesh`) or a VTK surface (:mod:`drake_grasp.objects.vtk_polydata`),
+    an Open Inventor ``.iv`` or VRML ``.wrl`` file, as its header says it is (every shape where its
+    transforms put it: :mod:`drake_grasp.objects.inventor_mesh`), or any format trimesh reads. A
+    COLLADA ``.dae`` declares its unit, and comes in metres (:mod:`drake_grasp.objects.collada_mesh`).
+    `file_type` names the format when the suffix does not (``"iv"``, ``"off"``, ``"ply"``: a GraspIt
+    body file says which). ObjectError (one line) for a file that is missing, unreadable or damaged,
+    has no triangles or has vertices that are not finite."""
     if not path.exists():
         raise ObjectError(f"{label}: file not found")
     if not path.is_file():
         raise ObjectError(f"{label}: not a file")
-    suffix = path.suffix.lower()
-    if suffix == ".msh":
+    suffix = "." + file_type.lower() if file_type else path.suffix.lower()
+    if suffix in INVENTOR_SUFFIXES:
+        vertices, faces = inventor_mesh.read_inventor(path.read_bytes(), label)
+    elif suffix == ".msh":
         vertices, faces = mujoco_msh.read_msh(path.read_bytes(), label)
     elif suffix == ".dae":
         vertices, faces = collada_mesh.read_dae(path.read_bytes(), label)
@@ -77,7 +86,7 @@ def read_triangles(path: Path, label: str) -> trimesh.Trimesh:
             vertices, faces = vtk_mesh.boundary_surface(*vtk_mesh.read_vtk(data, label))
     else:
         try:
-            mesh = trimesh.load(path, force="mesh", process=False)
+            mesh = trimesh.load(path, file_type=file_type, force="mesh", process=False)
         except Exception as error:  # trimesh raises many types for unreadable files.
             reason = _one_line(error) or type(error).__name__
             raise ObjectError(f"{label}: cannot read mesh ({reason})") from None
@@ -303,7 +312,8 @@ def object_from_mesh(
     join_gap: float | None = None,
 ) -> ObjectSpec:
     """An object from a closed triangle mesh in any format trimesh reads (OBJ, STL, PLY, ...), a
-    MuJoCo ``.msh`` or the boundary of Drake's tetrahedral ``.vtk``.
+    MuJoCo ``.msh``, the boundary of Drake's tetrahedral ``.vtk``, or an Open Inventor ``.iv`` or VRML
+    ``.wrl`` file (GraspIt!'s geometry, in millimetres: `scale` 0.001).
 
     The object is the solid the mesh encloses (:mod:`drake_grasp.objects.solid`): closed shells
     that overlap are united (mass and inertia never count an overlap twice); shells that do not
