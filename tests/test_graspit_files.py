@@ -177,3 +177,149 @@ def test_an_inventor_mesh_in_millimetres_loads_with_scale_like_any_mesh_file(tmp
     line = _refusal(capsys, ["trial", "--object", str(path), "--out", str(tmp_path / "out")])
     assert "largest extent 60 m" in line and "--scale 0.001" in line
     assert not (tmp_path / "out").exists()
+
+
+# --- GraspIt! body files -------------------------------------------------------------------------
+
+CUBE_IV = IV + "Separator { Cube { width 50 height 50 depth 50 } }"
+
+
+def _body(folder, xml: str, geometry: str | None = CUBE_IV, name: str = "cube.iv", body: str = "cube.xml"):
+    """A body file (and its geometry) in `folder`, GraspIt's layout."""
+    if geometry is not None:
+        (folder / name).write_text(geometry)
+    path = folder / body
+    path.write_text('<?xml version="1.0" ?>\n<root>\n' + xml + "\n</root>\n")
+    return path
+
+
+def test_a_body_files_grams_millimetres_and_unit_mass_inertia_become_si(tmp_path):
+    # GraspIt's inertia is per unit mass, in mm², about the centre of gravity: for a 50 mm cube a²/6.
+    path = _body(tmp_path, """<material>plastic</material><mass>300</mass><cog>0 0 3</cog>
+        <inertia_matrix>400 10 0 10 420 0 0 0 430</inertia_matrix>
+        <geometryFile type="Inventor">cube.iv</geometryFile>""")
+    spec = resolve_user_object(str(path))
+    assert spec.mass == pytest.approx(0.300)
+    assert spec.inertia == pytest.approx(tuple(0.3 * 1e-6 * np.array([400, 420, 430, 10, 0, 0])))
+    assert spec.extents == pytest.approx([0.05, 0.05, 0.05])
+    assert spec.rest_height == pytest.approx(0.025 + 0.003)  # its centre of mass is the file's <cog>, 3 mm up
+    assert spec.source == str(path.resolve())
+    again = resolve_user_object(str(path), inertia="geometry")  # a 50 mm cube's own: m a²/6
+    assert again.inertia[:3] == pytest.approx([0.3 * 0.05**2 / 6] * 3)
+
+
+def test_without_mass_cog_or_inertia_the_geometry_and_density_give_them(tmp_path):
+    path = _body(tmp_path, '<geometryFile>cube.iv</geometryFile>')  # type Inventor is the default
+    spec = resolve_user_object(str(path))
+    assert spec.mass == pytest.approx(spec.volume * __import__("drake_grasp").objects.DEFAULT_DENSITY)
+    assert spec.inertia[:3] == pytest.approx([spec.mass * 0.05**2 / 6] * 3)
+    assert resolve_user_object(str(path)).mass == pytest.approx(spec.mass)
+
+
+def test_geometry_scaling_then_offset_place_the_geometry_in_millimetres(tmp_path):
+    block = IV + "Cube { width 10 height 20 depth 30 }"
+    uniform = _body(tmp_path, "<geometryScaling>2</geometryScaling><geometryFile>block.iv</geometryFile>", block,
+                    "block.iv", "uniform.xml")
+    assert resolve_user_object(str(uniform)).extents == pytest.approx([0.02, 0.04, 0.06])
+    per_axis = _body(tmp_path, "<geometryScalingX>3</geometryScalingX><geometryScalingZ>0.5</geometryScalingZ>"
+                     "<geometryFile>block.iv</geometryFile>", None, body="per_axis.xml")
+    assert resolve_user_object(str(per_axis)).extents == pytest.approx([0.03, 0.02, 0.015])
+    # turned 90° about z after scaling (x 10 → 20 mm, now along y), moved 5 mm: the offset is in mm
+    offset = _body(tmp_path, "<geometryScaling>2</geometryScaling><geometryOffset><transform>"
+                   "<translation>0 0 5</translation><rotation>90 z</rotation></transform></geometryOffset>"
+                   "<cog>0 0 5</cog><geometryFile>block.iv</geometryFile>", None, body="offset.xml")
+    spec = resolve_user_object(str(offset))
+    assert spec.extents == pytest.approx([0.04, 0.02, 0.06])
+    assert spec.rest_height == pytest.approx(0.030)  # the <cog> at the moved centre: nothing to tip
+
+
+def test_an_implausible_inertia_is_replaced_and_a_cog_outside_the_geometry_too(tmp_path):
+    from drake_grasp.objects.spec import InertiaWarning
+
+    zeros = _body(tmp_path, "<mass>200</mass><inertia_matrix>0 0 0 0 0 0 0 0 0</inertia_matrix>"
+                  "<geometryFile>cube.iv</geometryFile>", body="zeros.xml")
+    with pytest.warns(InertiaWarning, match="implausible inertia in the file .*not positive-definite"):
+        spec = resolve_user_object(str(zeros))
+    assert spec.mass == pytest.approx(0.2) and spec.inertia[0] == pytest.approx(0.2 * 0.05**2 / 6)
+    outside = _body(tmp_path, "<mass>200</mass><cog>0 0 80</cog><geometryFile>cube.iv</geometryFile>",
+                    None, body="outside.xml")
+    with pytest.warns(InertiaWarning, match=r"implausible <cog> in the file \(55 mm outside"):
+        assert resolve_user_object(str(outside)).rest_height == pytest.approx(0.025)
+
+
+def test_a_geometry_name_that_differs_in_case_only_is_found_with_a_note(tmp_path):
+    from drake_grasp.objects.spec import MeshNote
+
+    path = _body(tmp_path, "<mass>300</mass><geometryFile>soap.iv</geometryFile>", CUBE_IV, "soap.IV", "soap.xml")
+    with pytest.warns(MeshNote, match="names soap.iv; read soap.IV"):
+        assert resolve_user_object(str(path)).mass == pytest.approx(0.3)
+
+
+def test_vrml_off_and_ply_geometry_types(tmp_path):
+    _body(tmp_path, "", VRML + "Shape { geometry Box { size 40 40 40 } }", "box.wrl", "unused.xml")
+    wrl = _body(tmp_path, '<geometryFile type="Inventor">box.wrl</geometryFile>', None, body="wrl.xml")
+    assert resolve_user_object(str(wrl)).extents == pytest.approx([0.04, 0.04, 0.04])
+    for kind in ("off", "ply"):
+        trimesh.creation.box((30, 30, 30)).export(tmp_path / f"box.{kind}")
+        body = _body(tmp_path, f'<geometryFile type="{kind}">box.{kind}</geometryFile>', None, body=f"{kind}.xml")
+        assert resolve_user_object(str(body)).extents == pytest.approx([0.03, 0.03, 0.03])
+
+
+@pytest.mark.parametrize("xml, geometry, message", [
+    ("<mass>300</mass><geometryFile>missing.iv</geometryFile>", None,
+     r"geometry file 'missing.iv' not found \(looked for .*missing.iv\)"),
+    ("<geometryFile>cube.iv</geometryFile>", "#Inventor V2.1 binary\n\x00",
+     r"cube.xml: cube.iv: binary Open Inventor .* is not read"),
+    ("<mass>3OO</mass><geometryFile>cube.iv</geometryFile>", CUBE_IV, r"<mass> '3OO' is not a number"),
+    ("<cog>0 0</cog><geometryFile>cube.iv</geometryFile>", CUBE_IV, r"<cog> needs 3 numbers, got 2"),
+    ("<inertia_matrix>1 0 0 0 1 0 0 0</inertia_matrix><geometryFile>cube.iv</geometryFile>", CUBE_IV,
+     r"<inertia_matrix> needs 9 numbers, got 8"),
+    ("<mass>0</mass><geometryFile>cube.iv</geometryFile>", CUBE_IV, r"<mass> must be positive \(grams\), got 0"),
+    ("<geometryScaling>-1</geometryScaling><geometryFile>cube.iv</geometryFile>", CUBE_IV,
+     r"geometry scaling must be positive, got -1 -1 -1"),
+    ('<geometryFile type="obj">cube.iv</geometryFile>', CUBE_IV,
+     r"geometry type 'obj' is not one GraspIt! reads \(Inventor, off, ply\)"),
+    ("<geometryOffset><translation>1 2 3</translation></geometryOffset><geometryFile>cube.iv</geometryFile>",
+     CUBE_IV, r"<geometryOffset> without a <transform>"),
+    ("<mass>300</mass>", None, r"a GraspIt! body file without a <geometryFile>"),
+    ("<geometryFile>cube.iv</geometryFile>", IV + "Cube { width 1 height 1 depth 1 }",
+     r"largest extent 1.\d+ mm: less than the 3 mm .* \(GraspIt! files are in millimetres"),
+    ("<geometryFile>cube.iv</geometryFile>", IV + "Separator { Translation { translation 1 2 } Cube { } }",
+     r"cube.iv: Translation \(line 2\): translation needs 3 numbers, got 2"),
+])
+def test_a_bad_body_file_is_refused_in_one_line_before_any_work(tmp_path, capsys, xml, geometry, message):
+    path = _body(tmp_path, xml, geometry)
+    line = _refusal(capsys, ["objects", "check", str(path)])
+    assert line.startswith(f"drake-grasp objects: error: {path}: "), line
+    assert re.search(message, line), line
+    line = _refusal(capsys, ["trial", "--object", str(path), "--out", str(tmp_path / "out")])
+    assert re.search(message, line), line
+    assert not (tmp_path / "out").exists()
+
+
+@pytest.mark.parametrize("text, message", [
+    ('<robot type="Hand"><palm>palm.xml</palm><dof type="r"/></robot>',
+     r"a GraspIt! robot file \(<robot>\): only GraspIt object body files .* are read"),
+    ("<world><graspableBody><filename>models/objects/mug.xml</filename></graspableBody></world>",
+     r"a GraspIt! world file \(<world>\): only GraspIt object body files"),
+    ("<root><geometryFile>cube.iv</geometryFile>", r"thing.xml: cannot parse \(no element found: line 1"),
+])
+def test_a_graspit_robot_world_or_broken_xml_is_refused_in_one_line(tmp_path, capsys, text, message):
+    path = tmp_path / "thing.xml"
+    path.write_text(text)
+    assert re.search(message, _refusal(capsys, ["objects", "check", str(path)]))
+
+
+def test_a_body_file_takes_the_inertia_and_join_options_but_not_scale(tmp_path, capsys):
+    path = _body(tmp_path, "<mass>300</mass><geometryFile>cube.iv</geometryFile>")
+    line = _refusal(capsys, ["objects", "check", str(path), "--scale", "0.001"])
+    assert "--scale applies to mesh files" in line
+    assert cli.main(["objects", "check", str(path), "--inertia", "geometry", "--join-gap", "0.001"]) == 0
+    out = capsys.readouterr().out
+    assert "size 5.0 x 5.0 x 5.0 cm" in out and "mass 300.0 g" in out
+    assert cli.main(["objects", "check", str(path)]) == 0
+    assert "inertia from the solid at uniform density (the GraspIt! file gives no <inertia_matrix>)" in \
+        capsys.readouterr().out
+    with pytest.raises(ObjectError, match="not an MJCF file"):  # other .xml files still go to the MJCF reader
+        (tmp_path / "other.xml").write_text("<sdf/>")
+        resolve_user_object(str(tmp_path / "other.xml"))

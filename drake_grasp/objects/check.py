@@ -95,6 +95,8 @@ def check_object(argument: str, **options) -> tuple[ObjectSpec, CheckReport]:
         source = "the collision geometry (the file's was replaced)" if replaced else "the file"
         if options.get("inertia") == "geometry":
             source = "the collision geometry"
+        elif suffix == ".xml" and not replaced and _graspit_body_without_inertia(argument):
+            source = "the solid at uniform density (the GraspIt! file gives no <inertia_matrix>)"
     else:
         source = "the solid at uniform density"
     inertia = spec.inertia_matrix()
@@ -109,6 +111,12 @@ def check_object(argument: str, **options) -> tuple[ObjectSpec, CheckReport]:
         piece_vertices=vertices, rpy_TO=tuple(spec.rpy_TO), rest_height=spec.rest_height, load_time=first,
         cached_load_time=again)
     return spec, report
+
+
+def _graspit_body_without_inertia(argument: str) -> bool:
+    from drake_grasp.objects import graspit_files
+
+    return graspit_files.graspit_kind(argument) == "body" and not graspit_files.gives_inertia(argument)
 
 
 def write_replay(spec: ObjectSpec, html_path: str | Path, visual: str | None = None, scale: float = 1.0) -> None:

@@ -35,10 +35,13 @@ def resolve_object(name_or_path: str | os.PathLike, **kw) -> ObjectSpec:
             ``sphere:0.12``, ``cube:0.08``, ``cylinder:0.1x0.3`` or ``cylinder:0.1`` (metres;
             length default CYLINDER_FAMILY_LENGTH: lying along x), ``box:0.05x0.025x0.01`` (length
             along x, width, height; resting on a face); or the path of a mesh (any format trimesh
-            reads, a MuJoCo ``.msh``, Drake's tetrahedral ``.vtk``) or an ``.sdf``/``.urdf``/MJCF
-            model file, or a Gazebo model folder (its SDF file: :func:`gazebo_model_file`).
+            reads, a MuJoCo ``.msh``, Drake's tetrahedral ``.vtk``, Open Inventor ``.iv``, VRML
+            ``.wrl``) or an ``.sdf``/``.urdf``/MJCF model file, a GraspIt! body ``.xml``
+            (:func:`drake_grasp.objects.graspit_files.object_from_graspit`), or a Gazebo model folder
+            (its SDF file: :func:`gazebo_model_file`).
         **kw: Passed on to :func:`paper_object`, :func:`sphere_object` (etc.),
-            :func:`object_from_mesh` or :func:`object_from_sdf`.
+            :func:`object_from_mesh`, :func:`object_from_sdf`, ``object_from_mjcf`` or
+            ``object_from_graspit``.
 
     Raises:
         ObjectError: Unknown name (listing the valid names), bad primitive string, missing or bad
@@ -90,10 +93,10 @@ def resolve_user_object(
     for option in given:
         if option not in taken:
             flag = "--" + option.replace("_", "-")
-            kinds = ("model files (SDF, URDF, MJCF)" if option == "inertia" else
-                     "mesh files and MJCF models" if option == "join_gap" else
+            kinds = ("model files (SDF, URDF, MJCF, GraspIt! bodies)" if option == "inertia" else
+                     "mesh files, MJCF models and GraspIt! bodies" if option == "join_gap" else
                      "SDF and URDF model files" if option == "package_path" else
-                     "mesh files (OBJ, STL, PLY, glTF, MuJoCo .msh, Drake .vtk)")
+                     "mesh files (OBJ, STL, PLY, glTF, MuJoCo .msh, Drake .vtk, Inventor .iv, VRML .wrl)")
             raise ObjectError(f"{text}: {flag} applies to {kinds} only")
     if not (scale > 0.0 and math.isfinite(scale)):
         raise ObjectError(f"--scale must be positive, got {scale!r}")
@@ -135,8 +138,9 @@ def mesh_options(scale: float = 1.0, largest_component: bool = False, join_gap: 
 
 
 def options_for(name_or_path: str, **options) -> dict:
-    """Of `options` (:func:`mesh_options`'s keywords), those the object takes: scale and
-    largest_component a mesh file, join_gap a mesh file or an MJCF model, inertia a model file,
+    """Of `options` (:func:`mesh_options`'s keywords), those the object takes: scale a mesh file;
+    largest_component and join_gap a mesh file or an ``.xml``/``.mjcf`` model (MJCF, or a GraspIt!
+    body, whose unit is fixed: millimetres, so it takes no scale); inertia a model file;
     package_path an SDF or URDF file (the ones that name ``package://`` URIs)."""
     text = str(name_or_path).strip()
     mjcf = is_model_file(text) and Path(text).suffix.lower() in (".xml", ".mjcf")
@@ -146,7 +150,7 @@ def options_for(name_or_path: str, **options) -> dict:
     return {k: v for k, v in options.items() if takes.get(k, False)}
 
 
-MODEL_SUFFIXES = (".sdf", ".urdf", ".xml", ".mjcf")  # model files (drake_grasp.objects.model_files)
+MODEL_SUFFIXES = (".sdf", ".urdf", ".xml", ".mjcf")  # model files (model_files; a GraspIt! body .xml: graspit_files)
 
 
 def gazebo_model_file(folder: Path, label: str | None = None) -> Path:
@@ -186,6 +190,11 @@ def _object_from_file(path: Path, label: str, kw: dict) -> ObjectSpec:
 
         if path.suffix.lower() in (".sdf", ".urdf"):
             return model_files.object_from_sdf(path, **kw)
+        if path.suffix.lower() == ".xml":
+            from drake_grasp.objects import graspit_files
+
+            if graspit_files.graspit_kind(path):  # a GraspIt! body (robots and worlds refused)
+                return graspit_files.object_from_graspit(path, **kw)
         return model_files.object_from_mjcf(path, **kw)
     return object_from_mesh(path, **kw)
 
