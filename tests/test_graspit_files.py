@@ -323,3 +323,13 @@ def test_a_body_file_takes_the_inertia_and_join_options_but_not_scale(tmp_path, 
     with pytest.raises(ObjectError, match="not an MJCF file"):  # other .xml files still go to the MJCF reader
         (tmp_path / "other.xml").write_text("<sdf/>")
         resolve_user_object(str(tmp_path / "other.xml"))
+
+
+def test_vrml_1_is_read_as_inventor_and_a_gzipped_file_too(tmp_path):
+    import gzip
+
+    text = "#VRML V1.0 ascii\nSeparator { Transform { translation 0 0 5 scaleFactor 2 1 1 } Cube { } }"
+    mesh = _mesh(text, "old.wrl")
+    assert mesh.bounds == pytest.approx(np.array([[-2.0, -1.0, 4.0], [2.0, 1.0, 6.0]]))
+    vertices, faces = read_inventor(gzip.compress(text.encode()), "old.wrl")
+    assert np.allclose(vertices, mesh.vertices) and len(faces) == 12
