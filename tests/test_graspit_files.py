@@ -206,6 +206,19 @@ def test_a_body_files_grams_millimetres_and_unit_mass_inertia_become_si(tmp_path
     assert spec.source == str(path.resolve())
     again = resolve_user_object(str(path), inertia="geometry")  # a 50 mm cube's own: m a²/6
     assert again.inertia[:3] == pytest.approx([0.3 * 0.05**2 / 6] * 3)
+    # The plant takes it as it takes any object: its mass and inertia reach the body.
+    from pydrake.multibody.plant import AddMultibodyPlantSceneGraph
+    from pydrake.systems.framework import DiagramBuilder
+
+    from drake_grasp.objects.drake_model import AddObject
+
+    plant, _ = AddMultibodyPlantSceneGraph(DiagramBuilder(), 0.001)
+    model = AddObject(plant, spec)
+    plant.Finalize()
+    (index,) = plant.GetBodyIndices(model)
+    body = plant.get_body(index)
+    assert body.default_mass() == pytest.approx(0.3)
+    assert body.default_rotational_inertia().get_moments() == pytest.approx(0.3e-6 * np.array([400, 420, 430]))
 
 
 def test_without_mass_cog_or_inertia_the_geometry_and_density_give_them(tmp_path):
