@@ -58,7 +58,8 @@ def vertex_shape(walk, node: Node, coords: np.ndarray) -> tuple[np.ndarray, np.n
         index = walk.indices(node, "coordIndex")
         used = index[index >= 0]
         if len(used) and used.max() >= len(coords):
-            walk.fail(node, f"coordIndex {int(used.max())} is out of range (the coordinates are 0 to {len(coords) - 1})")
+            walk.fail(node, f"coordIndex {int(used.max())} is out of range (the coordinates are 0 to "
+                      f"{len(coords) - 1})")
         starts, counts = _runs(index)
         cut = _fans if kind == "IndexedFaceSet" else _strips
         return coords, cut(index, starts, counts)
