@@ -178,3 +178,23 @@ def test_the_note_of_a_joined_hull_set_gives_the_widest_gap_it_bridged(zoo):
     (note,) = [n for n in notes if "closed shells within the join gap" in n]
     bridged = float(note.split("gaps up to ")[1].split(" mm")[0])
     assert 0.1 < bridged <= 2.0  # the zoo moves its cells 0.25-1 mm apart each
+
+
+def test_a_thin_solid_open_by_a_few_edges_is_closed_and_kept_and_a_wavy_sheet_is_not():
+    """A 40 × 30 × 1 cm slab missing one triangle (a model airplane's airframe open by three edges)
+    is thin for its extent, yet the closing adds a speck of its area: it is a solid and is kept. A
+    curved sheet closed along its boundary doubles its area, and is dropped as before."""
+    slab = trimesh.creation.box((0.4, 0.3, 0.01))
+    holed = trimesh.Trimesh(slab.vertices, slab.faces[1:], process=False)
+    assert not holed.is_watertight
+    shells, report = repair.closed_shells(holed)
+    assert len(shells) == 1 and shells[0].volume == pytest.approx(slab.volume, rel=1e-6)
+    assert report.closed_patches == 1 and report.open_edges == 3
+    x, y = np.meshgrid(np.linspace(0, 0.1, 11), np.linspace(0, 0.1, 11))
+    z = 0.02 * np.sin(x * 60.0)
+    grid = np.arange(121).reshape(11, 11)
+    faces = [[grid[i, j], grid[i, j + 1], grid[i + 1, j + 1]] for i in range(10) for j in range(10)] + \
+            [[grid[i, j], grid[i + 1, j + 1], grid[i + 1, j]] for i in range(10) for j in range(10)]
+    wavy = trimesh.Trimesh(np.c_[x.ravel(), y.ravel(), z.ravel()], np.array(faces), process=False)
+    with pytest.raises(repair.RepairError):
+        repair.closed_shells(wavy)

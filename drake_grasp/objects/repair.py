@@ -45,6 +45,12 @@ MIN_FILL_FRACTION = 0.02
 # along its boundary is a thin pillow (a 10 cm sheet waving ±2 cm: 6 mm), a tube without caps is not
 # (a 6 × 10 cm tube: 23 mm), nor is a deep bowl; a shallow dish is refused with the sheets.
 MIN_CLOSED_THICKNESS = 0.1
+# ... unless closing it changed its area by at most this fraction: then it was a solid with a few
+# small holes (a model airplane's airframe open by three edges is thin for its 45 cm span, but the
+# holes are a speck of its surface), not a sheet, whose closing adds about its own area again (a
+# pillow's other side) or, where MeshFix cuts a sheet down to a closed scrap, loses most of it; nor a
+# tube or a bowl, whose caps or lid add a fifth to a half.
+MAX_NEARLY_CLOSED_AREA = 0.02
 
 
 def _unique_rows(rows: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -240,9 +246,11 @@ def _outward(patch: trimesh.Trimesh, report: RepairReport) -> trimesh.Trimesh:
     return patch
 
 
-def _encloses_volume(patch: trimesh.Trimesh, open_extent: float | None = None) -> bool:
-    """Whether a patch is a closed solid; `open_extent` (m), for a patch that had to be closed,
-    is the largest extent of the open patch it came from (see MIN_CLOSED_THICKNESS)."""
+def _encloses_volume(patch: trimesh.Trimesh, open_extent: float | None = None, open_area: float | None = None
+                     ) -> bool:
+    """Whether a patch is a closed solid; `open_extent` (m) and `open_area` (m²), for a patch that
+    had to be closed, are the largest extent and the area of the open patch it came from (see
+    MIN_CLOSED_THICKNESS and MAX_NEARLY_CLOSED_AREA)."""
     if not (patch.is_watertight and patch.is_winding_consistent):
         return False
     try:
@@ -251,6 +259,8 @@ def _encloses_volume(patch: trimesh.Trimesh, open_extent: float | None = None) -
         return False
     if not patch.volume > MIN_FILL_FRACTION * hull > 0.0:
         return False
+    if open_area is not None and abs(patch.area - open_area) <= MAX_NEARLY_CLOSED_AREA * patch.area:
+        return True
     if open_extent is not None:
         return 2.0 * patch.volume / patch.area >= MIN_CLOSED_THICKNESS * open_extent
     return True
@@ -354,7 +364,7 @@ def _part_shells(mesh: trimesh.Trimesh, report: RepairReport, opened: list) -> l
             if closed is not None:
                 closed = _outward(closed, RepairReport())
                 closed.metadata["inward"] = patch.metadata.get("inward", False)
-            if closed is None or not _encloses_volume(closed, float(np.max(patch.extents))):
+            if closed is None or not _encloses_volume(closed, float(np.max(patch.extents)), float(patch.area)):
                 report.dropped_faces += len(patch.faces)
                 continue
             report.open_edges += open_edges
