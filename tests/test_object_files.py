@@ -181,14 +181,17 @@ def test_the_note_of_a_joined_hull_set_gives_the_widest_gap_it_bridged(zoo):
 
 
 def test_a_thin_solid_open_by_a_few_edges_is_closed_and_kept_and_a_wavy_sheet_is_not():
-    """A 40 × 30 × 1 cm slab missing one triangle (a model airplane's airframe open by three edges)
-    is thin for its extent, yet the closing adds a speck of its area: it is a solid and is kept. A
-    curved sheet closed along its boundary doubles its area, and is dropped as before."""
+    """A 40 × 30 × 1 cm slab missing one small triangle (a model airplane's airframe open by three
+    edges) is thin for its extent, yet its hole is a speck: it is a solid and is kept. A curved sheet,
+    whose boundary is its whole rim, is dropped as before."""
     slab = trimesh.creation.box((0.4, 0.3, 0.01))
-    holed = trimesh.Trimesh(slab.vertices, slab.faces[1:], process=False)
+    for _ in range(5):
+        slab = slab.subdivide()
+    top = np.flatnonzero(slab.triangles_center[:, 2] > 0.004)[0]
+    holed = trimesh.Trimesh(slab.vertices, np.delete(slab.faces, top, axis=0), process=False)
     assert not holed.is_watertight
     shells, report = repair.closed_shells(holed)
-    assert len(shells) == 1 and shells[0].volume == pytest.approx(slab.volume, rel=1e-6)
+    assert len(shells) == 1 and shells[0].volume == pytest.approx(slab.volume, rel=1e-3)
     assert report.closed_patches == 1 and report.open_edges == 3
     x, y = np.meshgrid(np.linspace(0, 0.1, 11), np.linspace(0, 0.1, 11))
     z = 0.02 * np.sin(x * 60.0)

@@ -23,7 +23,7 @@ from drake_grasp.objects.spec import (
 
 # Bump when loading a file gives other pieces or mass properties for the same bytes: it is part of
 # the decompositions' cache key and of a mesh file's fingerprint (records are computed anew).
-IMPORT_VERSION = 7
+IMPORT_VERSION = 8
 CLEANING_VERSION = 2  # part of the cache key of decompositions: bump when cleaning changes
 
 

@@ -32,6 +32,7 @@ that needs closing is refused with one line saying how to enable the repair.
 from __future__ import annotations
 
 import dataclasses
+import math
 
 import numpy as np
 import trimesh
@@ -45,12 +46,11 @@ MIN_FILL_FRACTION = 0.02
 # along its boundary is a thin pillow (a 10 cm sheet waving ±2 cm: 6 mm), a tube without caps is not
 # (a 6 × 10 cm tube: 23 mm), nor is a deep bowl; a shallow dish is refused with the sheets.
 MIN_CLOSED_THICKNESS = 0.1
-# ... unless closing it changed its area by at most this fraction: then it was a solid with a few
-# small holes (a model airplane's airframe open by three edges is thin for its 45 cm span, but the
-# holes are a speck of its surface), not a sheet, whose closing adds about its own area again (a
-# pillow's other side) or, where MeshFix cuts a sheet down to a closed scrap, loses most of it; nor a
-# tube or a bowl, whose caps or lid add a fifth to a half.
-MAX_NEARLY_CLOSED_AREA = 0.02
+# ... unless its open boundary is at most this fraction of the square root of its area: then it was a
+# solid with a few small holes (a model airplane's airframe open by three edges is thin for its 45 cm
+# span, but its holes are specks), not a sheet (a square sheet's boundary is 4 times the root of its
+# area), a tube without caps (6 × 10 cm: 2.7 times) or a bowl.
+MAX_HOLES_PERIMETER = 0.05
 
 
 def _unique_rows(rows: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -246,11 +246,11 @@ def _outward(patch: trimesh.Trimesh, report: RepairReport) -> trimesh.Trimesh:
     return patch
 
 
-def _encloses_volume(patch: trimesh.Trimesh, open_extent: float | None = None, open_area: float | None = None
+def _encloses_volume(patch: trimesh.Trimesh, open_extent: float | None = None, nearly_closed: bool = False
                      ) -> bool:
-    """Whether a patch is a closed solid; `open_extent` (m) and `open_area` (m²), for a patch that
-    had to be closed, are the largest extent and the area of the open patch it came from (see
-    MIN_CLOSED_THICKNESS and MAX_NEARLY_CLOSED_AREA)."""
+    """Whether a patch is a closed solid; `open_extent` (m), for a patch that had to be closed, is the
+    largest extent of the open patch it came from (see MIN_CLOSED_THICKNESS), and `nearly_closed`
+    whether that patch's holes were small (see MAX_HOLES_PERIMETER)."""
     if not (patch.is_watertight and patch.is_winding_consistent):
         return False
     try:
@@ -259,7 +259,7 @@ def _encloses_volume(patch: trimesh.Trimesh, open_extent: float | None = None, o
         return False
     if not patch.volume > MIN_FILL_FRACTION * hull > 0.0:
         return False
-    if open_area is not None and abs(patch.area - open_area) <= MAX_NEARLY_CLOSED_AREA * patch.area:
+    if nearly_closed:
         return True
     if open_extent is not None:
         return 2.0 * patch.volume / patch.area >= MIN_CLOSED_THICKNESS * open_extent
@@ -359,12 +359,18 @@ def _part_shells(mesh: trimesh.Trimesh, report: RepairReport, opened: list) -> l
         patch.remove_unreferenced_vertices()
         patch = _outward(patch, report)
         if not patch.is_watertight:
-            open_edges = len(trimesh.grouping.group_rows(patch.edges_sorted, require_count=1))
+            boundary = patch.edges_sorted[trimesh.grouping.group_rows(patch.edges_sorted, require_count=1)]
+            open_edges = len(boundary)
+            perimeter = float(np.linalg.norm(np.diff(patch.vertices[boundary], axis=1), axis=2).sum())
             closed = _meshfix(patch, open_edges) if len(patch.faces) >= 3 else None
             if closed is not None:
                 closed = _outward(closed, RepairReport())
                 closed.metadata["inward"] = patch.metadata.get("inward", False)
-            if closed is None or not _encloses_volume(closed, float(np.max(patch.extents)), float(patch.area)):
+            # Small holes, and a closing that kept most of the surface (MeshFix drops faces it finds
+            # intersecting; it kept 90 % of a P-51's airframe).
+            nearly_closed = (perimeter <= MAX_HOLES_PERIMETER * math.sqrt(float(patch.area)) and closed is not None
+                             and closed.area >= 0.8 * patch.area)
+            if closed is None or not _encloses_volume(closed, float(np.max(patch.extents)), nearly_closed):
                 report.dropped_faces += len(patch.faces)
                 continue
             report.open_edges += open_edges
