@@ -130,3 +130,15 @@ def test_a_damaged_package_is_one_line(data, problem):
         read_3mf(data, "bad.3mf")
     message = str(raised.value)
     assert message.startswith("bad.3mf: ") and problem in message and "\n" not in message
+
+
+def test_a_3mf_file_loads_as_a_users_object_in_its_declared_unit(tmp_path, capsys):
+    """`drake-grasp objects check box.3mf`: a 40 × 20 × 10 mm box, no --scale needed."""
+    from drake_grasp import cli
+
+    path = tmp_path / "box.3mf"
+    path.write_bytes(package({"3D/3dmodel.model": model(f'<object id="1">{mesh_xml(BOX)}</object>',
+                                                         '<item objectid="1"/>')}))
+    assert cli.main(["objects", "check", str(path)]) == 0
+    out = capsys.readouterr().out
+    assert "accepted" in out and "size 4.0 x 2.0 x 1.0 cm" in out
