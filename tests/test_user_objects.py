@@ -91,8 +91,8 @@ def test_a_dense_mesh_is_simplified_with_a_note_and_keeps_its_mass(tmp_path):
 def test_cli_scale_is_for_mesh_files_only(tmp_path, capsys):
     assert cli.main(["trial", "--object", "cube:0.05", "--scale", "0.001", "--oracle"]) == 2
     assert capsys.readouterr().err.strip().splitlines() == [
-        "drake-grasp trial: error: cube:0.05: --scale applies to mesh files (OBJ, STL, PLY, glTF, MuJoCo .msh, Drake .vtk) "
-        "only"]
+        "drake-grasp trial: error: cube:0.05: --scale applies to mesh files (OBJ, STL, PLY, glTF, 3MF, COLLADA, "
+        "MuJoCo .msh, VTK, Inventor .iv, VRML .wrl) only"]
     path = tmp_path / "box.stl"
     trimesh.creation.box((0.1, 0.06, 0.04)).export(path)
     assert cli.main(["resemble", "--object", str(path), "--scale", "-1"]) == 2

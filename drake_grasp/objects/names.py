@@ -96,7 +96,7 @@ def resolve_user_object(
             kinds = ("model files (SDF, URDF, MJCF, GraspIt! bodies)" if option == "inertia" else
                      "mesh files, MJCF models and GraspIt! bodies" if option == "join_gap" else
                      "SDF and URDF model files" if option == "package_path" else
-                     "mesh files (OBJ, STL, PLY, glTF, MuJoCo .msh, Drake .vtk, Inventor .iv, VRML .wrl)")
+                     "mesh files (OBJ, STL, PLY, glTF, 3MF, COLLADA, MuJoCo .msh, VTK, Inventor .iv, VRML .wrl)")
             raise ObjectError(f"{text}: {flag} applies to {kinds} only")
     if not (scale > 0.0 and math.isfinite(scale)):
         raise ObjectError(f"--scale must be positive, got {scale!r}")
