@@ -142,3 +142,11 @@ def test_a_3mf_file_loads_as_a_users_object_in_its_declared_unit(tmp_path, capsy
     assert cli.main(["objects", "check", str(path)]) == 0
     out = capsys.readouterr().out
     assert "accepted" in out and "size 4.0 x 2.0 x 1.0 cm" in out
+
+
+def test_a_beam_lattice_alone_is_refused_saying_so():
+    lattice = ('<object id="1"><mesh><vertices><vertex x="0" y="0" z="0"/><vertex x="0" y="0" z="10"/></vertices>'
+               '<beamlattice radius="1" minlength="0.1"><beams><beam v1="0" v2="1"/></beams></beamlattice>'
+               '</mesh></object>')
+    with pytest.raises(ObjectError, match="a beam lattice only"):
+        read_3mf(package({"3D/3dmodel.model": model(lattice, '<item objectid="1"/>')}), "lattice.3mf")

@@ -19,7 +19,8 @@ Production Extension (version 1.2, §2):
   component in another model part of the package (``p:path``). The transform is the specification's
   3 × 4 matrix ``m00 m01 m02 m10 ... m32``, applied to row vectors (``[x y z 1] · M``). Objects of type
   ``support`` or ``solidsupport`` (a slicer's print supports) are left out, as they are not the object;
-* **only triangles** matter: colours, materials, textures, thumbnails and print settings are ignored.
+* **only triangles** matter: colours, materials, textures, thumbnails and print settings are ignored,
+  and so are the beams of a beam lattice (a file of beams alone is refused, saying so).
 
 A package that is not a ZIP, has no model part, names an object it does not define, holds a cycle of
 components or a triangle index out of range, or builds nothing, is refused in one line.
@@ -106,6 +107,7 @@ class _Package:
         self.package, self.label = package, label
         self.objects: dict[str, dict[str, ElementTree.Element]] = {}
         self.roots: dict[str, ElementTree.Element] = {}
+        self.beams = False  # a mesh carries a beam lattice (struts drawn as cylinders, not triangles)
         self.scales: dict[str, float] = {}
 
     def part(self, name: str) -> dict[str, ElementTree.Element]:
@@ -140,6 +142,7 @@ class _Package:
             return
         for mesh in _children(obj, "mesh"):
             out.append(self._mesh(mesh, X, part, object_id))
+            self.beams |= any(_tag(child) == "beamlattice" for child in mesh)
         for components in _children(obj, "components"):
             for component in _children(components, "component"):
                 child_part = (component.get(f"{{{PRODUCTION_NAMESPACE}}}path") or f"/{part}").lstrip("/")
@@ -188,6 +191,9 @@ def read_3mf(data: bytes, label: str) -> tuple[np.ndarray, np.ndarray]:
             item_part = (item.get(f"{{{PRODUCTION_NAMESPACE}}}path") or model).lstrip("/")
             reader.triangles(item_part, item.get("objectid"), _transform(item.get("transform"), label), 0, pieces)
     pieces = [(v, f) for v, f in pieces if len(f)]
+    if not pieces and reader.beams:
+        raise ObjectError(f"{label}: a beam lattice only (struts, the Beam Lattice extension): its beams are not "
+                          "read; export the lattice as a triangle mesh")
     if not pieces:
         raise ObjectError(f"{label}: file contains no triangles (a point cloud or an empty mesh): no solid "
                           "can be recovered")
