@@ -150,3 +150,20 @@ def test_a_beam_lattice_alone_is_refused_saying_so():
                '</mesh></object>')
     with pytest.raises(ObjectError, match="a beam lattice only"):
         read_3mf(package({"3D/3dmodel.model": model(lattice, '<item objectid="1"/>')}), "lattice.3mf")
+
+
+SLICE = "http://schemas.microsoft.com/3dmanufacturing/slice/2015/07"
+
+
+@pytest.mark.parametrize("resolution, loads", [(None, False), ("lowres", False), ("fullres", True)])
+def test_an_object_of_slices_loads_only_with_a_full_resolution_mesh(resolution, loads):
+    attribute = f' s:meshresolution="{resolution}"' if resolution else ""
+    resources = (f'<s:slicestack id="9" zbottom="0"/><object id="1" s:slicestackid="9"{attribute}>'
+                 f'{mesh_xml(BOX)}</object>')
+    text = model(resources, '<item objectid="1"/>').replace("<model ", f'<model xmlns:s="{SLICE}" ', 1)
+    data = package({"3D/3dmodel.model": text})
+    if loads:
+        assert read_3mf(data, "sliced.3mf")[1].shape == (12, 3)
+    else:
+        with pytest.raises(ObjectError, match="described by a stack of slices"):
+            read_3mf(data, "sliced.3mf")

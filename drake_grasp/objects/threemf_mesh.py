@@ -19,6 +19,10 @@ Production Extension (version 1.2, §2):
   component in another model part of the package (``p:path``). The transform is the specification's
   3 × 4 matrix ``m00 m01 m02 m10 ... m32``, applied to row vectors (``[x y z 1] · M``). Objects of type
   ``support`` or ``solidsupport`` (a slicer's print supports) are left out, as they are not the object;
+* an object described by **slices** (the Slice Extension's ``s:slicestackid``) is refused unless its
+  mesh says it is full resolution (``s:meshresolution="fullres"``): writers give such an object a
+  low-resolution stand-in (the consortium's sliced sphere carries a 2 cm box), and a wrong shape is
+  worse than none;
 * **only triangles** matter: colours, materials, textures, thumbnails and print settings are ignored,
   and so are the beams of a beam lattice (a file of beams alone is refused, saying so).
 
@@ -39,6 +43,7 @@ from drake_grasp.objects.spec import ObjectError
 
 CORE_NAMESPACE = "http://schemas.microsoft.com/3dmanufacturing/core/2015/02"
 PRODUCTION_NAMESPACE = "http://schemas.microsoft.com/3dmanufacturing/production/2015/06"
+SLICE_NAMESPACE = "http://schemas.microsoft.com/3dmanufacturing/slice/2015/07"
 MODEL_RELATIONSHIP = "http://schemas.microsoft.com/3dmanufacturing/2013/01/3dmodel"
 DEFAULT_MODEL_PART = "3D/3dmodel.model"
 
@@ -140,6 +145,11 @@ class _Package:
             raise ObjectError(f"{self.label}: names object {object_id} of /{part}, which is not defined")
         if obj.get("type", "model") in SUPPORT_TYPES:
             return
+        if obj.get(f"{{{SLICE_NAMESPACE}}}slicestackid") and \
+                obj.get(f"{{{SLICE_NAMESPACE}}}meshresolution", "") != "fullres":
+            raise ObjectError(f"{self.label}: object {object_id} is described by a stack of slices (the Slice "
+                              "extension), and its mesh may be only a stand-in (a box round a sphere, in the 3MF "
+                              "consortium's samples); export it as a full mesh")
         for mesh in _children(obj, "mesh"):
             out.append(self._mesh(mesh, X, part, object_id))
             self.beams |= any(_tag(child) == "beamlattice" for child in mesh)
