@@ -10,7 +10,7 @@ from drake_grasp.objects.other_formats import advice
 @pytest.mark.parametrize("name, words", [
     ("arm.urdf.xacro", "xacro FILE > object.urdf"),
     ("part.STEP", "a CAD file (STEP)"),
-    ("mug.usdz", "OpenUSD"),
+    ("mug.skp", "a SketchUp model"),
     ("scene.blend", "a Blender file"),
     ("cloud.pcd", "reconstruct a surface"),
 ])

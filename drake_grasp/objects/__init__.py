@@ -10,8 +10,8 @@ One concept per module:
   binary .msh), `vtk_mesh` (Drake's tetrahedral .vtk, by its boundary), `collada_mesh` (COLLADA
   .dae, in its declared unit), `inventor_mesh` with `inventor_scene` and `inventor_shapes` (Open
   Inventor .iv and VRML .wrl), `graspit_files` (GraspIt!'s body files), `threemf_mesh` (3D printing's
-  .3mf, in its declared unit), `other_formats` (formats not read, and what to give instead), `repair` (a real mesh into
-  closed shells), `solid` (which shells are one object, and their union), `sizes` (the sizes the
+  .3mf, in its declared unit), `usd_mesh` (OpenUSD, with the optional usd-core), `other_formats`
+  (formats not read, and what to give instead), `repair` (a real mesh into closed shells), `solid` (which shells are one object, and their union), `sizes` (the sizes the
   hand can grasp; a file outside them refused), `model_files` (SDFormat, URDF, MJCF),
   `readable_models` (a model file's text and meshes as Drake's parser can take them),
   `inertia_checks` (a file's inertial checked), `packages` (where ``package://`` and Gazebo's
@@ -42,7 +42,7 @@ _PARTS = ("spec", "mass_properties", "catalogue", "names", "mesh_files", "pieces
 _MODULES = _PARTS + ("cleaning", "collada_mesh", "inertia_checks", "mesh_zoo", "mujoco_msh", "near_primitives", "novel", "packages",
                      "piece_budget", "readable_models", "repair", "sizes", "solid", "standing", "vtk_mesh",
                      "inventor_mesh", "inventor_scene", "inventor_shapes", "graspit_files", "threemf_mesh",
-                     "other_formats")
+                     "other_formats", "usd_mesh")
 
 
 def __getattr__(name: str):

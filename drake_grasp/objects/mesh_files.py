@@ -2,8 +2,8 @@
 split into convex pieces for contact and rested on a stable face.
 
 A mesh file (any format trimesh reads: OBJ, STL, PLY, OFF, glTF/GLB; MuJoCo's binary ``.msh``;
-Drake's tetrahedral ``.vtk``, by its boundary surface; COLLADA ``.dae`` and 3D printing's ``.3mf``, in
-the unit they declare; Open
+Drake's tetrahedral ``.vtk``, by its boundary surface; COLLADA ``.dae``, 3D printing's ``.3mf`` and
+OpenUSD (with the optional ``usd-core``), in the unit they declare; Open
 Inventor ``.iv`` and VRML ``.wrl``, GraspIt!'s geometry) is read as it stores its triangles (`--scale`,
 glTF turned z up), repaired (:mod:`drake_grasp.objects.repair`), its shells joined into one rigid
 object (:mod:`drake_grasp.objects.solid`), checked for a size the hand can grasp
@@ -30,7 +30,8 @@ from pydrake.math import RollPitchYaw, RotationMatrix
 from scipy.spatial import ConvexHull, QhullError
 
 from drake_grasp.objects import (
-    collada_mesh, inventor_mesh, mujoco_msh, other_formats, repair, sizes, threemf_mesh, vtk_mesh, vtk_polydata,
+    collada_mesh, inventor_mesh, mujoco_msh, other_formats, repair, sizes, threemf_mesh, usd_mesh, vtk_mesh,
+    vtk_polydata,
 )
 from drake_grasp.objects.pieces import IMPORT_VERSION, _decompose
 from drake_grasp.objects.spec import (
@@ -66,10 +67,11 @@ def read_triangles(path: Path, label: str, file_type: str | None = None) -> trim
     (:mod:`drake_grasp.objects.vtk_mesh`) or a VTK surface (:mod:`drake_grasp.objects.vtk_polydata`),
     an Open Inventor ``.iv`` or VRML ``.wrl`` file, as its header says it is (every shape where its
     transforms put it: :mod:`drake_grasp.objects.inventor_mesh`), or any format trimesh reads. A
-    COLLADA ``.dae`` and a 3MF package declare their unit, and come in metres
-    (:mod:`drake_grasp.objects.collada_mesh`, :mod:`drake_grasp.objects.threemf_mesh`). A format users
-    bring that is not read here (a xacro file, CAD, USD: :mod:`drake_grasp.objects.other_formats`)
-    is named with what to give instead.
+    COLLADA ``.dae``, a 3MF package and an OpenUSD stage declare their unit, and come in metres
+    (:mod:`drake_grasp.objects.collada_mesh`, :mod:`drake_grasp.objects.threemf_mesh`,
+    :mod:`drake_grasp.objects.usd_mesh`: USD also turned z up, and read only with the optional
+    ``usd-core``). A format users bring that is not read here (a xacro file, CAD:
+    :mod:`drake_grasp.objects.other_formats`) is named with what to give instead.
     `file_type` names the format when the suffix does not (``"iv"``, ``"off"``, ``"ply"``: a GraspIt
     body file says which). ObjectError (one line) for a file that is missing, unreadable or damaged,
     has no triangles or has vertices that are not finite."""
@@ -86,6 +88,8 @@ def read_triangles(path: Path, label: str, file_type: str | None = None) -> trim
         vertices, faces = collada_mesh.read_dae(path.read_bytes(), label)
     elif suffix == ".3mf":
         vertices, faces = threemf_mesh.read_3mf(path.read_bytes(), label)
+    elif suffix in usd_mesh.USD_SUFFIXES:
+        vertices, faces = usd_mesh.read_usd(path, label)
     elif suffix == ".vtk":
         data = path.read_bytes()
         if vtk_polydata.is_polydata(data):  # a surface (PCL's and VTK's scans), ASCII or binary

@@ -21,10 +21,6 @@ ADVICE = {
     ".igs": f"a CAD file (IGES): {MESH_EXPORT}",
     ".sldprt": f"a SolidWorks part: {MESH_EXPORT}",
     ".f3d": f"a Fusion 360 design: {MESH_EXPORT}",
-    ".usd": f"an OpenUSD file (Isaac Sim, Omniverse): {MESH_EXPORT}",
-    ".usda": f"an OpenUSD file (Isaac Sim, Omniverse): {MESH_EXPORT}",
-    ".usdc": f"an OpenUSD file (Isaac Sim, Omniverse): {MESH_EXPORT}",
-    ".usdz": f"an OpenUSD file (Isaac Sim, Omniverse): {MESH_EXPORT}",
     ".fbx": f"an FBX scene: {MESH_EXPORT}",
     ".blend": f"a Blender file: {MESH_EXPORT} (File > Export)",
     ".max": f"a 3ds Max scene: {MESH_EXPORT}",
@@ -38,7 +34,8 @@ ADVICE = {
 
 def advice(path: str | Path) -> str | None:
     """What `path` is and what to give instead, if its suffix names a format users bring that is not
-    read here (a xacro file, CAD, a 3D tool's scene, USD, a point cloud); None otherwise."""
+    read here (a xacro file, CAD, a 3D tool's scene, a point cloud); None otherwise. (OpenUSD is read
+    with the optional usd-core: :mod:`drake_grasp.objects.usd_mesh`.)"""
     suffixes = [suffix.lower() for suffix in Path(path).suffixes]
     for suffix in reversed(suffixes):
         if suffix in ADVICE:

@@ -1,0 +1,80 @@
+"""OpenUSD stages as Isaac Sim and Omniverse ship objects, read in metres with z up
+(drake_grasp.objects.usd_mesh); without the optional usd-core, one line that says how to read them."""
+
+import importlib.util
+
+import numpy as np
+import pytest
+
+from drake_grasp import cli
+from drake_grasp.objects.spec import ObjectError
+from drake_grasp.objects.usd_mesh import read_usd
+
+HAS_USD = importlib.util.find_spec("pxr") is not None
+
+# A 10 × 4 × 6 cm box as a Mesh of quads in centimetres, Y up, moved 1 m along x; and beside it a
+# cylinder of radius 2 and height 8 along Y, guide purpose (left out).
+STAGE = """#usda 1.0
+(
+    metersPerUnit = 0.01
+    upAxis = "Y"
+)
+
+def Xform "object"
+{
+    double3 xformOp:translate = (100, 0, 0)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+
+    def Mesh "box"
+    {
+        int[] faceVertexCounts = [4, 4, 4, 4, 4, 4]
+        int[] faceVertexIndices = [0, 1, 3, 2, 4, 6, 7, 5, 0, 4, 5, 1, 2, 3, 7, 6, 0, 2, 6, 4, 1, 5, 7, 3]
+        point3f[] points = [(-5, -3, -2), (-5, -3, 2), (-5, 3, -2), (-5, 3, 2), (5, -3, -2), (5, -3, 2), (5, 3, -2), (5, 3, 2)]
+    }
+
+    def Cylinder "handle_guide"
+    {
+        uniform token purpose = "guide"
+        double radius = 2
+        double height = 8
+        uniform token axis = "Y"
+    }
+}
+"""
+
+
+@pytest.mark.skipif(not HAS_USD, reason="the optional usd-core is not installed")
+def test_a_y_up_stage_in_centimetres_comes_in_metres_with_z_up(tmp_path):
+    path = tmp_path / "box.usda"
+    path.write_text(STAGE)
+    vertices, faces = read_usd(path, "box.usda")
+    assert faces.shape == (12, 3)  # the box's six quads; the guide cylinder is left out
+    np.testing.assert_allclose(np.ptp(vertices, axis=0), [0.10, 0.04, 0.06], atol=1e-9)  # y (6 cm) is now z
+    np.testing.assert_allclose(vertices.mean(axis=0), [1.0, 0.0, 0.0], atol=1e-9)
+
+
+@pytest.mark.skipif(not HAS_USD, reason="the optional usd-core is not installed")
+def test_a_usd_object_loads_as_a_users_object(tmp_path, capsys):
+    path = tmp_path / "box.usda"
+    path.write_text(STAGE)
+    assert cli.main(["objects", "check", str(path)]) == 0
+    out = capsys.readouterr().out
+    assert "accepted" in out and "size 10.0 x 4.0 x 6.0 cm" in out and "volume 240.0 cm³" in out
+
+
+@pytest.mark.skipif(not HAS_USD, reason="the optional usd-core is not installed")
+def test_a_damaged_stage_is_one_line(tmp_path):
+    path = tmp_path / "bad.usda"
+    path.write_text("#usda 1.0\ndef Mesh \"m\" {\n  point3f[] points = [(0, 0\n")
+    with pytest.raises(ObjectError) as raised:
+        read_usd(path, "bad.usda")
+    assert str(raised.value).startswith("bad.usda: USD could not open it") and "\n" not in str(raised.value)
+
+
+@pytest.mark.skipif(HAS_USD, reason="usd-core is installed")
+def test_without_usd_core_a_usd_file_is_one_line_naming_it(tmp_path, capsys):
+    path = tmp_path / "box.usda"
+    path.write_text(STAGE)
+    assert cli.main(["objects", "check", str(path)]) == 2
+    err = capsys.readouterr().err
+    assert "pip install usd-core" in err and err.strip().count("\n") == 0
