@@ -437,3 +437,21 @@ def test_the_cli_says_in_one_line_that_it_rested_a_mesh_on_a_stable_face(tmp_pat
     assert cli.main(["plan-eigengrasp", "--object", str(path), "--steps", "30001", "--json"]) == 0
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and err[0].startswith("drake-grasp plan-eigengrasp: warning: ") and "tip over" in err[0]
+
+
+def test_a_decomposition_that_stops_with_an_error_falls_back_to_the_convex_hull(monkeypatch, tmp_path):
+    """CoACD runs in a child process: when it aborts (it does on some meshes, taking its process with
+    it), the user's command goes on with the part's convex hull for contact, and says so."""
+    from drake_grasp.objects import pieces
+
+    monkeypatch.setattr(pieces, "_COACD_CHILD", "import os; os.abort()")
+    monkeypatch.setattr(pieces, "cache_dir", lambda: tmp_path)
+    l_shape = trimesh.boolean.union([trimesh.creation.box((0.06, 0.02, 0.02)),
+                                     trimesh.creation.box((0.02, 0.06, 0.02)).apply_translation([-0.02, 0.02, 0])],
+                                    engine="manifold")
+    assert l_shape.is_watertight and l_shape.volume < 0.9 * l_shape.convex_hull.volume
+    with pytest.warns(Warning, match="CoACD could not decompose this part"):
+        files = pieces._decompose(l_shape, "abort-test", 8, label="l.obj")
+    assert len(files) == 1
+    piece = trimesh.load(files[0], force="mesh")
+    assert piece.volume == pytest.approx(l_shape.convex_hull.volume, rel=0.05)

@@ -8,6 +8,8 @@ from __future__ import annotations
 import json
 import os
 import shutil
+import subprocess
+import sys
 import tempfile
 import warnings
 from pathlib import Path
@@ -27,18 +29,46 @@ IMPORT_VERSION = 8
 CLEANING_VERSION = 2  # part of the cache key of decompositions: bump when cleaning changes
 
 
-def _coacd_pieces(mesh: trimesh.Trimesh, max_pieces: int) -> list[np.ndarray]:
-    """CoACD's convex pieces of a closed mesh (their vertices, m): seed 0, quiet."""
-    import coacd  # Imported here: only non-convex user meshes need it.
+# CoACD runs in a child process: on some meshes its C++ code aborts the whole process ("terminate
+# called after throwing an instance of 'std::logic_error'": the usd-wg's chess king), which would
+# end the user's command with no message. The child reads the mesh from and writes the pieces to
+# .npz files; it imports only numpy and coacd.
+_COACD_CHILD = """
+import sys, numpy as np, coacd
+data = np.load(sys.argv[1])
+coacd.set_log_level("error")
+result = coacd.run_coacd(coacd.Mesh(data["vertices"], data["faces"]), threshold=float(data["threshold"]),
+                         max_convex_hull=int(data["max_pieces"]), preprocess_mode=str(data["preprocess"]), seed=0)
+np.savez(sys.argv[2], *[np.asarray(vertices, float) for vertices, _ in result])
+"""
 
-    coacd.set_log_level("error")
-    result = coacd.run_coacd(
-        coacd.Mesh(np.asarray(mesh.vertices, float), np.asarray(mesh.faces, np.int32)),
-        threshold=COACD_THRESHOLD,
-        max_convex_hull=max_pieces,
-        seed=0,
-    )
-    return [np.asarray(vertices, float) for vertices, _ in result]
+
+def _coacd_in_child(mesh: trimesh.Trimesh, max_pieces: int, preprocess: str) -> list[np.ndarray] | None:
+    """CoACD's convex pieces (their vertices, m) from a child process; None if the child failed."""
+    with tempfile.TemporaryDirectory(prefix="coacd-") as folder:
+        given, taken = Path(folder) / "mesh.npz", Path(folder) / "pieces.npz"
+        np.savez(given, vertices=np.asarray(mesh.vertices, float), faces=np.asarray(mesh.faces, np.int32),
+                 threshold=COACD_THRESHOLD, max_pieces=max_pieces, preprocess=preprocess)
+        done = subprocess.run([sys.executable, "-c", _COACD_CHILD, str(given), str(taken)],
+                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        if done.returncode != 0 or not taken.exists():
+            return None
+        with np.load(taken) as pieces:
+            return [pieces[name] for name in sorted(pieces.files, key=lambda n: int(n.split("_")[1]))]
+
+
+def _coacd_pieces(mesh: trimesh.Trimesh, max_pieces: int, label: str = "mesh") -> list[np.ndarray]:
+    """CoACD's convex pieces of a closed mesh (their vertices, m): seed 0, quiet. If CoACD fails on the
+    mesh as given, it is run again with its own manifold preprocessing (a remesh) on; if that fails
+    too, the mesh's convex hull is its one piece for contact, with a note (mass properties come from
+    the mesh itself either way)."""
+    for preprocess in ("auto", "on"):
+        pieces = _coacd_in_child(mesh, max_pieces, preprocess)
+        if pieces:
+            return pieces
+    warnings.warn(f"{label}: CoACD could not decompose this part (it stopped with an error); its convex hull "
+                  "is its one piece for contact", MeshNote, stacklevel=4)
+    return [np.asarray(mesh.convex_hull.vertices, float)]
 
 
 def _decompose(mesh: trimesh.Trimesh, key: str, max_pieces: int, label: str = "mesh") -> list[str]:
@@ -71,7 +101,7 @@ def _decompose(mesh: trimesh.Trimesh, key: str, max_pieces: int, label: str = "m
             if body.volume >= (1.0 - CONVEXITY_TOLERANCE) * body_hull.volume:
                 parts.append(np.asarray(body_hull.vertices, float))
             else:
-                parts += _coacd_pieces(body, max_pieces)
+                parts += _coacd_pieces(body, max_pieces, label)
     # Pieces too thin for contact join a neighbour, and several parts' pieces are merged down to
     # max_pieces (a merged piece is the hull of both: the added volume is bounded and said).
     parts, added = cleaning.merge_pieces(parts, max_pieces)

@@ -21,7 +21,11 @@ the user's or density × volume, as for a mesh file.
 
 from __future__ import annotations
 
+import contextlib
 import math
+import os
+import sys
+import tempfile
 from pathlib import Path
 
 import numpy as np
@@ -82,6 +86,22 @@ def _polygon_mesh(prim, UsdGeom, label: str) -> tuple[np.ndarray, np.ndarray] | 
     return points, np.asarray(faces, np.int64)
 
 
+@contextlib.contextmanager
+def _quiet_stderr():
+    """USD reports what it could not compose (a material file in a format it has no plugin for, as
+    the usd-wg's chess pieces name MaterialX files) on the process's stderr, line by line; the
+    geometry is unaffected, so those reports are held back here."""
+    sys.stderr.flush()
+    saved = os.dup(2)
+    with tempfile.TemporaryFile() as sink:
+        os.dup2(sink.fileno(), 2)
+        try:
+            yield
+        finally:
+            os.dup2(saved, 2)
+            os.close(saved)
+
+
 def read_usd(path: Path, label: str) -> tuple[np.ndarray, np.ndarray]:
     """(vertices in metres with z up, triangle faces) of every solid a USD stage draws.
 
@@ -95,7 +115,8 @@ def read_usd(path: Path, label: str) -> tuple[np.ndarray, np.ndarray]:
         raise ObjectError(f"{label}: an OpenUSD file: reading it needs the optional package usd-core "
                           "(pip install usd-core); or export the object as a mesh (STL, OBJ, glTF or 3MF)") from None
     try:
-        stage = Usd.Stage.Open(str(path))
+        with _quiet_stderr():
+            stage = Usd.Stage.Open(str(path))
     except Exception as error:  # pxr raises Tf.ErrorException with multi-line text
         first = " ".join(str(error).split())[:160]
         raise ObjectError(f"{label}: USD could not open it ({first})") from None
