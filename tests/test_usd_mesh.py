@@ -78,3 +78,19 @@ def test_without_usd_core_a_usd_file_is_one_line_naming_it(tmp_path, capsys):
     assert cli.main(["objects", "check", str(path)]) == 2
     err = capsys.readouterr().err
     assert "pip install usd-core" in err and err.strip().count("\n") == 0
+
+
+@pytest.mark.skipif(not HAS_USD, reason="the optional usd-core is not installed")
+def test_meshes_inside_an_instance_are_read(tmp_path):
+    """Isaac Sim's assets make their meshes instanceable: the cube is inside an instance of an
+    abstract prototype (a class, not drawn itself), moved 0.5 m along x; metres, z up."""
+    path = tmp_path / "instanced.usda"
+    path.write_text('#usda 1.0\n(\n    metersPerUnit = 1\n    upAxis = "Z"\n)\n\n'
+                    'class Xform "prototype"\n{\n    def Cube "cube"\n    {\n        double size = 0.04\n    }\n}\n\n'
+                    'def Xform "object" (\n    instanceable = true\n    references = </prototype>\n)\n{\n'
+                    '    double3 xformOp:translate = (0.5, 0, 0)\n'
+                    '    uniform token[] xformOpOrder = ["xformOp:translate"]\n}\n')
+    vertices, faces = read_usd(path, "instanced.usda")
+    assert len(faces) == 12
+    np.testing.assert_allclose(np.ptp(vertices, axis=0), [0.04, 0.04, 0.04], atol=1e-9)
+    np.testing.assert_allclose(vertices.mean(axis=0), [0.5, 0.0, 0.0], atol=1e-9)

@@ -8,7 +8,8 @@ USD file is refused in one line that says so, and how to export a mesh instead.
 
 What is read (the stage composed as USD composes it: references, payloads, variants):
 
-* every ``UsdGeom.Mesh`` (polygons fanned into triangles) and the implicit solids ``Cube``, ``Sphere``,
+* every ``UsdGeom.Mesh`` (polygons fanned into triangles), also inside instances (Isaac Sim makes
+  its assets' meshes instanceable), and the implicit solids ``Cube``, ``Sphere``,
   ``Cylinder``, ``Cone`` and ``Capsule`` (tessellated, along their ``axis``), each placed by its
   world transform at the default time; prims of purpose ``guide`` are left out, as USD's renderers do;
 * **the stage's unit**: ``metersPerUnit`` (USD's fallback is 0.01, centimetres), so the object comes in
@@ -124,7 +125,9 @@ def read_usd(path: Path, label: str) -> tuple[np.ndarray, np.ndarray]:
         raise ObjectError(f"{label}: USD could not open it")
     cache = UsdGeom.XformCache(Usd.TimeCode.Default())
     vertices, faces, count = [], [], 0
-    for prim in stage.Traverse():
+    # Instance proxies too: Isaac Sim's assets make their meshes instanceable, and a plain traversal
+    # stops at an instance.
+    for prim in stage.Traverse(Usd.TraverseInstanceProxies(Usd.PrimDefaultPredicate)):
         if not prim.IsA(UsdGeom.Gprim) or UsdGeom.Imageable(prim).ComputePurpose() == UsdGeom.Tokens.guide:
             continue
         if prim.IsA(UsdGeom.Mesh):
