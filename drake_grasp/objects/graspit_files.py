@@ -89,12 +89,14 @@ def gives_inertia(path: str | os.PathLike) -> bool:
 
 
 def _numbers(root, tag: str, count: int, label: str) -> np.ndarray | None:
-    """The numbers of a child element (None if absent); ObjectError (one line) if they are not
-    `count` finite numbers."""
+    """The numbers of child element `tag` (None if absent; :func:`_element_numbers`)."""
     element = root.find(tag)
-    if element is None:
-        return None
-    text = " ".join((element.text or "").split())
+    return None if element is None else _element_numbers(element, count, label)
+
+
+def _element_numbers(element, count: int, label: str) -> np.ndarray:
+    """The numbers of an element's text; ObjectError (one line) if they are not `count` finite numbers."""
+    tag, text = element.tag, " ".join((element.text or "").split())
     try:
         values = np.array([float(v) for v in text.split()], float)
     except ValueError:
@@ -133,7 +135,7 @@ def _offset(root, label: str) -> np.ndarray:
     for child in transform:
         step = np.eye(4)
         if child.tag == "translation":
-            step[:3, 3] = _child_numbers(child, 3, label)
+            step[:3, 3] = _element_numbers(child, 3, label)
         elif child.tag == "rotation":
             words = (child.text or "").split()
             if len(words) != 2 or words[1] not in ("x", "y", "z") or not _is_number(words[0]):
@@ -141,7 +143,7 @@ def _offset(root, label: str) -> np.ndarray:
             axis = np.eye(3)["xyz".index(words[1])]
             step = trimesh.transformations.rotation_matrix(math.radians(float(words[0])), axis)
         elif child.tag == "rotationMatrix":
-            step[:3, :3] = _child_numbers(child, 9, label).reshape(3, 3).T  # Eigen fills column by column
+            step[:3, :3] = _element_numbers(child, 9, label).reshape(3, 3).T  # Eigen fills column by column
             step[:3, :3] = _orthonormal(step[:3, :3])
         elif child.tag == "fullTransform":
             numbers = re.findall(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?", child.text or "")
@@ -153,17 +155,6 @@ def _offset(root, label: str) -> np.ndarray:
             step[:3, 3] = translation
         total = total @ step  # GraspIt's `totalTran % newTran`: the later child acts first
     return total
-
-
-def _child_numbers(element, count: int, label: str) -> np.ndarray:
-    text = " ".join((element.text or "").split())
-    try:
-        values = np.array([float(v) for v in text.split()], float)
-    except ValueError:
-        raise ObjectError(f"{label}: <{element.tag}> {text[:60]!r} is not numbers") from None
-    if len(values) != count or not np.all(np.isfinite(values)):
-        raise ObjectError(f"{label}: <{element.tag}> needs {count} finite numbers, got {text[:60]!r}")
-    return values
 
 
 def _orthonormal(matrix: np.ndarray) -> np.ndarray:

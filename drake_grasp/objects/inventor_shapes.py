@@ -61,7 +61,7 @@ def vertex_shape(walk, node: Node, coords: np.ndarray) -> tuple[np.ndarray, np.n
             walk.fail(node, f"coordIndex {int(used.max())} is out of range (the coordinates are 0 to "
                       f"{len(coords) - 1})")
         starts, counts = _runs(index)
-        cut = _fans if kind == "IndexedFaceSet" else _strips
+        cut = fans if kind == "IndexedFaceSet" else _strips
         return coords, cut(index, starts, counts)
     start = int(walk.indices(node, "startIndex")[0]) if "startIndex" in node.fields else 0
     if kind == "QuadMesh":
@@ -80,7 +80,7 @@ def vertex_shape(walk, node: Node, coords: np.ndarray) -> tuple[np.ndarray, np.n
     counts = np.array(filled, np.int64) if filled else counts
     _check_count(walk, node, start, int(counts.sum()), len(coords))
     starts = start + np.cumsum(counts) - counts
-    cut = _fans if kind == "FaceSet" else _strips
+    cut = fans if kind == "FaceSet" else _strips
     return coords, cut(np.arange(len(coords)), starts, counts)
 
 
@@ -107,8 +107,10 @@ def _within(counts: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return run, k
 
 
-def _fans(index: np.ndarray, starts: np.ndarray, counts: np.ndarray) -> np.ndarray:
-    """Triangles (m, 3) of polygons, each a fan from its first vertex."""
+def fans(index: np.ndarray, starts: np.ndarray, counts: np.ndarray) -> np.ndarray:
+    """Triangles (m, 3) of polygons, each a fan from its first vertex: `index` holds the polygons'
+    vertex indices one after another, polygon i at `starts[i]` with `counts[i]` vertices (those under
+    3 are skipped). Shared by Inventor's face sets and USD's meshes."""
     keep = counts >= 3
     starts, counts = starts[keep], counts[keep]
     run, k = _within(counts)

@@ -32,6 +32,7 @@ from pathlib import Path
 import numpy as np
 import trimesh
 
+from drake_grasp.objects.inventor_shapes import fans
 from drake_grasp.objects.spec import ObjectError
 
 USD_SUFFIXES = (".usd", ".usda", ".usdc", ".usdz")
@@ -82,9 +83,7 @@ def _polygon_mesh(prim, UsdGeom, label: str) -> tuple[np.ndarray, np.ndarray] | 
     if indices.min() < 0 or indices.max() >= len(points):
         raise ObjectError(f"{label}: mesh {prim.GetPath()} has a point index out of range (0-{len(points) - 1})")
     starts = np.concatenate([[0], np.cumsum(counts)[:-1]])
-    faces = [(indices[start], indices[start + k], indices[start + k + 1])
-             for start, count in zip(starts, counts) for k in range(1, count - 1)]
-    return points, np.asarray(faces, np.int64)
+    return points, fans(indices, starts, counts)
 
 
 @contextlib.contextmanager
