@@ -119,6 +119,18 @@ PINCH_MAX_STICK_WIDTH = 0.015  # m
 # held with the estimate's longer side, 5/10 across the reach). Beyond it the shorter side is measured,
 # and closing across it is §5.4f's rule (a first version used the pinch's 1.25).
 FLOWER_SQUARE = 1.1
+# A thin object (standing lower than FLOWER_THIN above the table: a plate, a tile, a lying domino) is
+# closed across its longer side instead, where the tips land and meet it at shallower proximal angles
+# than across the shorter one. Sliding along the table, a tip meets an edge with the part of its
+# rounded end that faces the object at the angle it arrives at; the steeper it arrives, the higher
+# that part sits, and on an edge lower than it the tip meets the top corner, presses the object into
+# the table and lifts off it. Measured from the true pose (flower seed 37, a development seed, trial
+# seeds 1-2): plates and tiles 6.4-8.9 mm thick held 5/16 across the shorter side and 11/16 across the
+# longer; lying dominoes under 9 mm 0/8 and 2/8; 9-11.4 mm plates and tiles 12/12 across the shorter
+# side and 10/12 across the longer, and L and T shapes 6/8 and 5/8, so thicker objects keep the rule
+# above (docs/design.md §5.4p). Only where the tips land outside the longer side at the preshape's
+# widest (FLOWER_PRESHAPE_RANGE[0]): a ruler longer than that keeps the shorter side.
+FLOWER_THIN = 0.009  # m
 # Approaches within this angle of the vertical are "from above" for the table clearance.
 _FROM_ABOVE = math.radians(45.0)
 _DOWN = np.array([0.0, 0.0, -1.0])
@@ -400,6 +412,11 @@ def flower_landing_angle(half_width: float, spread: float, fingers: tuple = hand
     return math.radians(low)
 
 
+def _flower_height(estimate: ObjectEstimate) -> float:
+    """How high the object stands above the table, m: its estimated top less the table's height."""
+    return float(np.asarray(estimate.center)[2]) + estimate.half_extent_along(-_DOWN) - estimate.table_height
+
+
 def flower_pinch_axis(estimate: ObjectEstimate) -> int | None:
     """The estimate's axis along which the flower grasp pinches with two fingers (`PINCH_SPREAD`), or
     None for the three-finger flower:
@@ -413,7 +430,7 @@ def flower_pinch_axis(estimate: ObjectEstimate) -> int | None:
     R = np.asarray(estimate.R_WB, float)
     size = np.asarray(estimate.size, float)
     _, long_axis, short_axis = _top_face_axes(R, size)
-    height = float(np.asarray(estimate.center)[2]) + estimate.half_extent_along(-_DOWN) - estimate.table_height
+    height = _flower_height(estimate)
     length, width = size[long_axis], size[short_axis]
     if length < PINCH_MAX_LENGTH and height >= PINCH_MIN_HEIGHT:
         if length > PINCH_SQUARE * width:
@@ -433,7 +450,8 @@ def precision_grasp(estimate: ObjectEstimate) -> GraspPlan:
 
     The palm faces down above the object's centre, its fingers closing across the shorter horizontal
     side (on a square footprint, `FLOWER_SQUARE`, across the arm's reach: F1 and F2 on one side of
-    the reach, F3 on the other; docs/design.md §5.4k), F3 to the right of the arm's reach
+    the reach, F3 on the other; docs/design.md §5.4k; on a thin object, `FLOWER_THIN`, across the
+    longer side where the tips can land outside it: §5.4p), F3 to the right of the arm's reach
     (`flower_facing.thumb_to_the_right`; where the camera saw the footprint, `funnel.planning` may turn
     it so that F1 and F2 meet its fuller side). The fingers
     are preshaped to `flower_landing_angle`, and the palm's target puts their deepest point
@@ -454,12 +472,15 @@ def precision_grasp(estimate: ObjectEstimate) -> GraspPlan:
         angle = flower_landing_angle(estimate.half_extent_along(R_WP.col(0)), spread, (1, 2), PINCH_PRESHAPE_RANGE)
         preshape = (angle, angle, 0.0) + (angle * hand.DISTAL_PER_PROXIMAL,) * 2 + (0.0,)
     else:
+        spread, thumb_closes = ComplianceMode.CYLINDRICAL.spread, True
         closing_side = long_axis  # x_P along it: the fingers close across the shorter side
         if size[long_axis] <= FLOWER_SQUARE * size[short_axis]:  # square: across the reach
             reach = np.asarray(estimate.center, float)[:2] - ARM_BASE_XY
             closing_side = max((long_axis, short_axis), key=lambda i: abs(float(R[:2, i] @ reach)))
+        elif _flower_height(estimate) < FLOWER_THIN and hand.fingertip_reach(
+                FLOWER_PRESHAPE_RANGE[0], spread) >= 0.5 * size[long_axis] + FLOWER_MARGIN:
+            closing_side = short_axis  # thin: the fingers close across the longer side
         R_WP = _palm_rotation(_DOWN, R[:, closing_side])
-        spread, thumb_closes = ComplianceMode.CYLINDRICAL.spread, True
         angle = flower_landing_angle(estimate.reach_across(R_WP.col(0)), spread)
         preshape = (angle,) * 3 + (angle * hand.DISTAL_PER_PROXIMAL,) * 3
     # F3 (closing or open) to the right of the arm's reach: a half-turn changes neither the preshape nor

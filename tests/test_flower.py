@@ -198,3 +198,33 @@ def test_the_flower_grasp_pinches_a_thin_round_stick_end_to_end():
     # the placement's 10 degrees).
     assert abs(plans[0].X_WP_target.rotation().col(0)[0]) > 0.98
     assert record.success, (record.failure, record.detail)
+
+
+def test_the_palm_follows_the_closing_fingertips_down_counting_only_the_fingers_that_close():
+    """The compliant arm's target during the close moves down by as much as the closing tips rise
+    (`fingertips_rise`). The two-finger pinch leaves F3 open at 0: its rise is F1's and F2's alone,
+    not a mean that counts F3 (which let the pinching tips leave the table: docs/design.md §5.4f)."""
+    import math
+
+    from drake_grasp.control.grasp_executor import fingertips_rise
+    from drake_grasp.grasps import ObjectEstimate, precision_grasp
+    from drake_grasp.robot import hand
+
+    cube = ObjectEstimate(center=np.array([0.5, 0.0, 0.0125]), R_WB=np.eye(3), size=np.array([0.025] * 3), table_z=0.0)
+    pinch = precision_grasp(cube)
+    assert not pinch.thumb_closes and pinch.finger_preshape[2] == 0.0
+    landed, now = pinch.finger_preshape[0], pinch.finger_preshape[0] + math.radians(25)
+    expected = hand.fingertip_depth(landed, pinch.spread) - hand.fingertip_depth(now, pinch.spread)
+    assert expected > 0.01  # the tips rise centimetres over such a close
+    assert fingertips_rise(pinch, [now, now, 0.0]) == pytest.approx(expected)
+    assert fingertips_rise(pinch, [landed, landed, 0.0]) == 0.0
+    assert fingertips_rise(pinch, [landed - 0.1, landed - 0.1, 0.0]) == 0.0  # never up from the landing
+
+    plate = ObjectEstimate(center=np.array([0.5, 0.0, 0.006]), R_WB=np.eye(3), size=np.array([0.10, 0.06, 0.012]),
+                           table_z=0.0)
+    flower = precision_grasp(plate)
+    assert flower.thumb_closes
+    a = flower.finger_preshape[0]
+    b = a + math.radians(20)
+    expected = hand.fingertip_depth(a, flower.spread) - hand.fingertip_depth(b, flower.spread)
+    assert fingertips_rise(flower, [b, b, b]) == pytest.approx(expected)

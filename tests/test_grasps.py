@@ -97,6 +97,26 @@ def test_from_above_the_closing_fingertips_pass_over_the_table(grasp):
     assert TABLE_CLEARANCE - 1e-6 <= lowest <= TABLE_CLEARANCE + 1e-3
 
 
+@pytest.mark.parametrize("height, length, across_longer", [
+    (0.007, 0.10, True),    # a thin plate: across its longer side
+    (0.0085, 0.12, True),
+    (0.010, 0.10, False),   # thicker than FLOWER_THIN: across the shorter side
+    (0.007, 0.20, False),   # a thin ruler too long for the tips to land outside it
+])
+def test_a_thin_object_is_closed_across_its_longer_side_where_the_tips_land_outside_it(height, length, across_longer):
+    """Below FLOWER_THIN the three-finger flower closes across the longer side (x_P along the shorter),
+    and its tips land FLOWER_MARGIN beyond half of that side; where they cannot, the shorter side."""
+    yaw = math.radians(20)
+    long_W = np.array([math.cos(yaw), math.sin(yaw), 0.0])
+    plan = precision_grasp(_estimate([0.5, 0.05, height / 2], [length, 0.06, height], yaw=yaw))
+    assert plan.thumb_closes and plan.spread == ComplianceMode.CYLINDRICAL.spread
+    x_P = plan.X_WP_target.rotation().col(0)
+    closes_across = 0.06 if abs(x_P @ long_W) > 0.99 else length  # x_P runs along the side not closed across
+    assert abs(abs(x_P @ long_W) - (0.0 if across_longer else 1.0)) < 1e-9
+    assert hand.fingertip_reach(plan.finger_preshape[0]) >= closes_across / 2 + FLOWER_MARGIN - 1e-9 or \
+        plan.finger_preshape[0] == pytest.approx(FLOWER_PRESHAPE_RANGE[0])
+
+
 def _lowest_fingertip(plan):
     X_WH = plan.X_WP_target @ RigidTransform([0, 0, -hand.PALM_HEIGHT])
     corners = [[hand.A3, y, z] for y in (-hand.D3, hand.D3) for z in (-0.0125, 0.0125)]
@@ -104,7 +124,7 @@ def _lowest_fingertip(plan):
                for f in (1, 2, 3) for p in np.linspace(0, hand.PROXIMAL_LIMITS[1], 141))
 
 
-@pytest.mark.parametrize("height, width", [(0.008, 0.06), (0.02, 0.03), (0.012, 0.03)])
+@pytest.mark.parametrize("height, width", [(0.010, 0.06), (0.02, 0.03), (0.012, 0.03)])
 def test_the_flower_grasp_lands_the_fingertips_on_the_table_clear_of_the_object(height, width):
     """The preshaped fingertips' deepest point is FLOWER_SINK below the table at the landing target,
     their lowest centimetre lands FLOWER_MARGIN beyond the object's half-width, the palm is above the

@@ -54,6 +54,22 @@ from drake_grasp.protocol import ExecutionTimes
 FORCE_RAMP = 0.2
 
 
+def fingertips_rise(plan: GraspPlan, proximal: list[float]) -> float:
+    """How far the closing fingertips have risen towards the palm since they landed, m (never
+    negative): `hand.fingertip_depth` at the angle they landed at (`plan.finger_preshape`) less at
+    the closing fingers' mean proximal angle now (`proximal`, rad, F1-F3), at the plan's spread.
+
+    Only the fingers that close count: in the two-finger pinch (`plan.thumb_closes` False) F3 stays
+    open at 0, and counting it (behaviour before 0.35.0) took the mean a third short, so the palm
+    followed the pinching tips down by a fraction of their rise: on a 3 cm lump they left the table
+    by 10-20 mm as they closed and passed over it (docs/design.md §5.4f)."""
+    closing = 3 if plan.thumb_closes else 2
+    landed = float(np.mean(plan.finger_preshape[:closing]))
+    now = float(np.mean(proximal[:closing]))
+    rise = hand.fingertip_depth(landed, plan.spread) - hand.fingertip_depth(max(now, landed), plan.spread)
+    return max(rise, 0.0)
+
+
 class GraspPhase(enum.IntEnum):
     EXPLORE = 0  # no plan yet: the camera explores (the compliant-grasp supervisor only)
     MOVE = 1  # to the pre-grasp pose, hand opening to the mode's spread
@@ -327,18 +343,15 @@ class GraspExecutor(LeafSystem):
 
     def _following_fingertips(self, context: Context, progress: _Progress) -> RigidTransform:
         """The close's palm target: where the palm landed, moved along its normal by as much as the
-        closing fingertips rise (`hand.fingertip_depth` at the fingers' mean proximal angle, against
-        the angle they landed at), so that tips that landed on the table stay on it. Without the
-        hand's state (an unconnected `hand.state`), where it landed."""
+        closing fingertips rise (`fingertips_rise`), so that tips that landed on the table stay on
+        it. Without the hand's state (an unconnected `hand.state`), where it landed."""
         X = progress.palm_hold
         if not self._hand_state_port.HasValue(context):
             return X
-        plan = progress.motion.plan
-        landed = float(np.mean(plan.finger_preshape[:3]))
         angles = self._hand_index.joint_positions(self._hand_state_port.Eval(context))
-        now = float(np.mean([angles[HAND_JOINTS.all.index(name)] for name in HAND_JOINTS.proximal]))
-        rise = hand.fingertip_depth(landed, plan.spread) - hand.fingertip_depth(max(now, landed), plan.spread)
-        return RigidTransform(X.rotation(), X.translation() + max(rise, 0.0) * X.rotation().col(2))
+        proximal = [angles[HAND_JOINTS.all.index(name)] for name in HAND_JOINTS.proximal]
+        rise = fingertips_rise(progress.motion.plan, proximal)
+        return RigidTransform(X.rotation(), X.translation() + rise * X.rotation().col(2))
 
     def _CalcPalmForce(self, context: Context, output: BasicVector) -> None:
         progress = self.progress(context)
