@@ -37,7 +37,7 @@ from drake_grasp.objects.pieces import IMPORT_VERSION, _decompose
 from drake_grasp.objects.spec import (
     COACD_THRESHOLD, CONVEXITY_TOLERANCE, DEFAULT_DENSITY, DEFAULT_MAX_PIECES, MAX_FACES, MeshNote,
     ObjectError, ObjectSpec, PRIMITIVE_NAMES, STABLE_POSE_TOLERANCE, ShapePiece, UnstablePoseWarning,
-    YELLOW_PAPER_RGBA, cache_dir,
+    Y_UP_TO_Z_UP, YELLOW_PAPER_RGBA, cache_dir,
 )
 from drake_grasp.objects.mass_properties import _make_spec
 
@@ -126,7 +126,7 @@ def _read_mesh(path: Path, label: str, scale) -> trimesh.Trimesh:
     (an odd number of negative factors) keeps the faces pointing out."""
     mesh = read_triangles(path, label)
     if path.suffix.lower() in _Y_UP_SUFFIXES:
-        mesh.apply_transform(trimesh.transformations.rotation_matrix(math.pi / 2, [1.0, 0.0, 0.0]))
+        mesh.apply_transform(Y_UP_TO_Z_UP)
     # trimesh reverses the faces' winding under a mirroring transform, so they keep pointing out.
     mesh.apply_transform(np.diag([*np.broadcast_to(np.asarray(scale, float), (3,)), 1.0]))
     extents = mesh.extents

@@ -53,6 +53,10 @@ from pydrake.math import RigidTransform, RollPitchYaw, RotationMatrix
 
 from drake_grasp.objects import cleaning
 
+# A file whose up is y (glTF's convention, and an OpenUSD stage's fallback) is turned so that its up is
+# z: +90 deg about x, (x, y, z) -> (x, -z, y). 4 x 4, for trimesh's apply_transform.
+Y_UP_TO_Z_UP = trimesh.transformations.rotation_matrix(np.pi / 2, [1.0, 0.0, 0.0])
+
 # --- Assumed numbers (docs/design.md §4.3: "assumed" numbers live here, named) --------------------
 
 # Default density (kg/m³) of primitive-family objects and of user meshes given without a mass.

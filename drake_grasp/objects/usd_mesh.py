@@ -33,7 +33,7 @@ import numpy as np
 import trimesh
 
 from drake_grasp.objects.inventor_shapes import fans
-from drake_grasp.objects.spec import ObjectError
+from drake_grasp.objects.spec import Y_UP_TO_Z_UP, ObjectError
 
 USD_SUFFIXES = (".usd", ".usda", ".usdc", ".usdz")
 SEGMENTS = 32  # around a tessellated implicit solid
@@ -146,5 +146,5 @@ def read_usd(path: Path, label: str) -> tuple[np.ndarray, np.ndarray]:
                           "can be recovered")
     V = np.vstack(vertices) * float(UsdGeom.GetStageMetersPerUnit(stage))
     if UsdGeom.GetStageUpAxis(stage) == UsdGeom.Tokens.y:
-        V = V @ np.array([[1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, -1.0, 0.0]])  # (x, y, z) → (x, -z, y): y up → z up
+        V = V @ Y_UP_TO_Z_UP[:3, :3].T  # y up → z up, as glTF
     return V, np.vstack(faces)
