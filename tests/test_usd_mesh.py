@@ -94,3 +94,20 @@ def test_meshes_inside_an_instance_are_read(tmp_path):
     assert len(faces) == 12
     np.testing.assert_allclose(np.ptp(vertices, axis=0), [0.04, 0.04, 0.04], atol=1e-9)
     np.testing.assert_allclose(vertices.mean(axis=0), [0.5, 0.0, 0.0], atol=1e-9)
+
+
+@pytest.mark.skipif(not HAS_USD, reason="the optional usd-core is not installed")
+def test_faces_of_fewer_than_three_vertices_are_skipped(tmp_path):
+    """A point and a line among a mesh's faces (exporters write them for seams and markers) draw
+    nothing; the box's quads are read, and a mesh of such faces alone is no solid."""
+    stage = STAGE.replace("[4, 4, 4, 4, 4, 4]", "[4, 4, 1, 4, 2, 4, 4, 4]").replace(
+        "[0, 1, 3, 2, 4, 6, 7, 5, 0, 4, 5, 1,", "[0, 1, 3, 2, 4, 6, 7, 5, 3, 0, 4, 5, 1, 6, 7,")
+    path = tmp_path / "seams.usda"
+    path.write_text(stage)
+    vertices, faces = read_usd(path, "seams.usda")
+    assert faces.shape == (12, 3)
+    np.testing.assert_allclose(np.ptp(vertices, axis=0), [0.10, 0.04, 0.06], atol=1e-9)
+    lines_only = STAGE.replace("[4, 4, 4, 4, 4, 4]", "[2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2]")
+    path.write_text(lines_only)
+    with pytest.raises(ObjectError):
+        read_usd(path, "seams.usda")

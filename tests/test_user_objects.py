@@ -9,6 +9,7 @@ import pytest
 import trimesh
 
 from drake_grasp import cli, objects
+from drake_grasp.file_formats import MESH_FORMATS
 from drake_grasp.objects import solid
 
 
@@ -91,8 +92,8 @@ def test_a_dense_mesh_is_simplified_with_a_note_and_keeps_its_mass(tmp_path):
 def test_cli_scale_is_for_mesh_files_only(tmp_path, capsys):
     assert cli.main(["trial", "--object", "cube:0.05", "--scale", "0.001", "--oracle"]) == 2
     assert capsys.readouterr().err.strip().splitlines() == [
-        "drake-grasp trial: error: cube:0.05: --scale applies to mesh files (OBJ, STL, PLY, glTF, 3MF, COLLADA, "
-        "MuJoCo .msh, VTK, Inventor .iv, VRML .wrl) only"]
+        f"drake-grasp trial: error: cube:0.05: --scale applies to mesh files ({MESH_FORMATS}) only"]
+    assert "OpenUSD" in MESH_FORMATS and "3MF" in MESH_FORMATS  # the formats the readers take are named
     path = tmp_path / "box.stl"
     trimesh.creation.box((0.1, 0.06, 0.04)).export(path)
     assert cli.main(["resemble", "--object", str(path), "--scale", "-1"]) == 2

@@ -3,6 +3,7 @@
 import json
 
 from drake_grasp.cli.common import UsageError, check_out_dir, check_seed
+from drake_grasp.file_formats import MESH_FORMATS, MODEL_FORMATS
 
 
 def add_objects(sub) -> None:
@@ -62,8 +63,8 @@ def add_objects_check(objects_sub) -> None:
     check = objects_sub.add_parser(
         "check",
         help="load an object file as a trial would and say what was found and done",
-        description="Loads FILE exactly as a trial would (mesh: OBJ, STL, PLY, glTF/GLB, Inventor .iv, VRML "
-        ".wrl; model: SDF, URDF, MJCF, a GraspIt! body .xml) and prints what it found and did: repairs, shells joined into one object and their gaps, "
+        description=f"Loads FILE exactly as a trial would (mesh: {MESH_FORMATS}; model: {MODEL_FORMATS}) "
+        "and prints what it found and did: repairs, shells joined into one object and their gaps, "
         "units, volume, mass and where the inertia came from, convex pieces, resting pose, load time. "
         "Exit code 0 for an accepted file, 2 (one line saying why) for a refused one.",
     )

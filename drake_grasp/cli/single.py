@@ -31,7 +31,7 @@ def add_demo(sub) -> None:
     add_mesh_options(demo)
     demo.add_argument("--object", required=True, metavar="NAME|PATH", type=object_argument,
                       help="a catalogue object (e.g. soccer_ball, bottle_case), a primitive "
-                      "(sphere:0.12, cube:0.08, cylinder:0.1x0.3) or a mesh file (OBJ, STL, PLY)")
+                      "(sphere:0.12, cube:0.08, cylinder:0.1x0.3), a mesh file or a model file")
     demo.add_argument("--mode", choices=[m.name.lower() for m in ComplianceMode],
                       help="compliance mode (default: spherical for round objects, else cylindrical)")
     add_common(demo, scenario="object")

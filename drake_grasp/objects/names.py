@@ -10,6 +10,7 @@ import re
 import warnings
 from pathlib import Path
 
+from drake_grasp.file_formats import MESH_FORMATS, MODEL_FORMATS
 from drake_grasp.objects.catalogue import (
     PAPER_OBJECTS, _PAPER_FACTORIES, box_object, cube_object, cylinder_object, paper_object, sphere_object,
 )
@@ -93,10 +94,10 @@ def resolve_user_object(
     for option in given:
         if option not in taken:
             flag = "--" + option.replace("_", "-")
-            kinds = ("model files (SDF, URDF, MJCF, GraspIt! bodies)" if option == "inertia" else
+            kinds = (f"model files ({MODEL_FORMATS})" if option == "inertia" else
                      "mesh files, MJCF models and GraspIt! bodies" if option == "join_gap" else
                      "SDF and URDF model files" if option == "package_path" else
-                     "mesh files (OBJ, STL, PLY, glTF, 3MF, COLLADA, MuJoCo .msh, VTK, Inventor .iv, VRML .wrl)")
+                     f"mesh files ({MESH_FORMATS})")
             raise ObjectError(f"{text}: {flag} applies to {kinds} only")
     if not (scale > 0.0 and math.isfinite(scale)):
         raise ObjectError(f"--scale must be positive, got {scale!r}")

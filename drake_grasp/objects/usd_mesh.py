@@ -68,7 +68,9 @@ def _implicit_solid(prim, UsdGeom) -> trimesh.Trimesh | None:
 
 
 def _polygon_mesh(prim, UsdGeom, label: str) -> tuple[np.ndarray, np.ndarray] | None:
-    """(points, triangles) of a Mesh prim, its polygons fanned; None for one without faces."""
+    """(points, triangles) of a Mesh prim, its polygons fanned; None for one without faces. A face of
+    fewer than 3 vertices (invalid in UsdGeom's schema, and skipped by its renderers) draws nothing
+    and is skipped here too, as in Inventor's face sets."""
     mesh = UsdGeom.Mesh(prim)
     points = mesh.GetPointsAttr().Get()
     counts = mesh.GetFaceVertexCountsAttr().Get()
@@ -78,12 +80,13 @@ def _polygon_mesh(prim, UsdGeom, label: str) -> tuple[np.ndarray, np.ndarray] | 
     points = np.asarray(points, float).reshape(-1, 3)
     counts = np.asarray(counts, np.int64)
     indices = np.asarray(indices, np.int64)
-    if counts.sum() != len(indices) or np.any(counts < 3):
+    if counts.sum() != len(indices) or np.any(counts < 0):
         raise ObjectError(f"{label}: mesh {prim.GetPath()} has face counts that do not match its indices")
     if indices.min() < 0 or indices.max() >= len(points):
         raise ObjectError(f"{label}: mesh {prim.GetPath()} has a point index out of range (0-{len(points) - 1})")
     starts = np.concatenate([[0], np.cumsum(counts)[:-1]])
-    return points, fans(indices, starts, counts)
+    triangles = fans(indices, starts, counts)
+    return (points, triangles) if len(triangles) else None
 
 
 @contextlib.contextmanager
