@@ -182,6 +182,17 @@ def test_a_round_objects_turn_is_not_invented_from_how_the_pixels_sample_it(monk
     assert sensing.turn_angle(sensing.fit_motion(start, end)[0]) > 1.0
 
 
+def test_an_object_pivoting_on_the_table_is_not_held_though_its_top_rose():
+    # A hammer lifted by its handle: the handle's end rose 10 cm, its head (3 cm tall) is still down.
+    top, lift, table = 0.05, 0.10, 0.0
+    pivoting = np.column_stack([np.zeros(50), np.zeros(50), np.linspace(0.025, 0.15, 50)])
+    assert sense_hold(pivoting, top, lift).held  # without the table's height, the top alone decides
+    sensed = sense_hold(pivoting, top, lift, table)
+    assert not sensed.held and sensed.top >= sensed.expected_top and sensed.bottom < sensed.expected_bottom
+    lifted = pivoting + [0.0, 0.0, 0.10]
+    assert sense_hold(lifted, top, lift, table).held
+
+
 def test_a_tall_object_left_on_the_table_is_not_held_though_its_sides_stand_high():
     # A 17.8 cm object that never rose: from above, the camera sees only its upper sides, whose lowest
     # points stand over the bottom test's threshold. The camera rose 10 cm with the hand, so the

@@ -10,13 +10,16 @@ object), so the test is the camera's:
 * at the end of the attempt (after the lift and the hold), the wrist camera's depth image is taken;
   the object's pixels (the same segmentation the exploration uses: the label image) are back-projected
   to world points (`table_top.back_project`);
-* the object is **held** when its highest visible points stand at least half the lift height above
-  the top the exploration measured (`LIFTED_FRACTION`), or its lowest visible points stand that high
-  above the table: a lifted object rose with the hand; one left behind, dropped or knocked over did
-  not, and one out of view was not held either. The second test is for a tall object held from above:
-  the palm hides its top from the wrist camera, which sees only its sides (a 20 cm handle held by the
-  box grasp and lifted 10 cm showed a top 8 mm under the first test's threshold; its sides' lowest
-  points were far above the table).
+* the object is **held** when its lowest visible points stand at least half the lift height above the
+  table (`LIFTED_FRACTION`): a lifted object rose with the hand, whole; one left behind, dropped or
+  knocked over did not, and one out of view was not held either. Where the table's height is not
+  known, its highest visible points must stand that much above the top the exploration measured. The
+  bottom decides because a top can rise alone (behaviour 0.36.0): a hammer lifted by its handle, its
+  head still on the table, pivots, and showed a top risen 7-9 cm over the test's threshold and a
+  bottom 2-3 cm above the table, read as held (tools seeds 13 and 17). And the top cannot tell a tall
+  object held from above: the palm hides its top from the wrist camera, which sees only its sides (a
+  20 cm handle held by the box grasp and lifted 10 cm showed a top 8 mm under the threshold; its
+  sides' lowest points were far above the table).
 
 And it must have risen with the camera: the camera also looks as the lift begins (the hand closed on
 it, still low). The camera rides on the palm, so an object that rose with the hand keeps its depth,
@@ -346,9 +349,9 @@ def sense_hold(points_W: np.ndarray, top_before: float, lift_height: float,
                lift_depths: tuple[np.ndarray, np.ndarray] | None = None,
                intrinsics: CameraIntrinsics | None = None, too_near: float = 0.0,
                slip_angle_deg: float = SLIP_ANGLE_DEG) -> Sensed:
-    """Whether the object is held (module docstring): its visible points' top against the top the
-    exploration measured before the grasp (m, world z) and the lift height (m); where the table's
-    height `table_z` (m) is given, its visible points' bottom against the table; and where
+    """Whether the object is held (module docstring): where the table's height `table_z` (m) is given,
+    its visible points' bottom against the table and the lift height (m); else their top against the
+    top the exploration measured before the grasp (m, world z); and where
     `hold_depths` gives the object's depth images (`in_hand_depth`) as the hold began and at its end,
     how far it moved in the hand along the camera's axis (`depth_change`), against `slip_distance` (m);
     and where `lift_depths` gives them as the lift began and at the end, whether it was left behind:
@@ -365,7 +368,10 @@ def sense_hold(points_W: np.ndarray, top_before: float, lift_height: float,
     heights = np.asarray(points_W, float).reshape(-1, 3)[:, 2]
     top = float(np.percentile(heights, TOP_PERCENTILE)) if len(heights) else float("nan")
     bottom = float(np.percentile(heights, BOTTOM_PERCENTILE)) if len(heights) else float("nan")
-    held = pressed or top >= expected or (table_z is not None and bottom >= expected_bottom)
+    # With the table's height known, the bottom decides: an object that rose whole has its lowest
+    # visible points up too, while one pivoting on the table (a hammer lifted by its handle, its head
+    # still down) raises its top alone. Without it, the top.
+    held = pressed or (bottom >= expected_bottom if table_z is not None else top >= expected)
     slid = float("nan")
     if hold_depths is not None:
         slid = depth_change(*hold_depths)
