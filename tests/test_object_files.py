@@ -172,6 +172,28 @@ def test_an_articulated_mjcf_model_is_refused(tmp_path):
         resolve_user_object(str(path))
 
 
+def test_an_mjcf_object_beside_its_scene_is_the_free_body(tmp_path):
+    """Meta-World's object files include a scene (a table, a wall: bodies without joints, welded to the
+    world) beside the object's body, which has a <freejoint>: the object is that body, with a note."""
+    scene = ('<body name="tablelink" pos="0 0 -0.1"><geom type="box" size="0.5 0.5 0.05"/></body>'
+             '<body name="wall" pos="0 0.6 0.2"><geom type="box" size="0.5 0.01 0.2"/></body>')
+    cube = '<body pos="0 0 0.02"><freejoint/><geom type="box" size="0.03 0.02 0.01" mass="0.05"/></body>'
+    path = tmp_path / "with_scene.xml"
+    path.write_text(f"<mujoco><worldbody>{scene}{cube}</worldbody></mujoco>")
+    spec, notes = _load(type("Case", (), {"path": path, "scale": 1.0}))
+    np.testing.assert_allclose(sorted(spec.extents), [0.02, 0.04, 0.06], atol=1e-6)
+    assert spec.mass == pytest.approx(0.05)
+    assert any("free body" in note and "'tablelink', 'wall'" in note for note in notes)
+    fixed = tmp_path / "fixed.xml"  # no body moves: which one is the object cannot be told
+    fixed.write_text(f"<mujoco><worldbody>{scene}</worldbody></mujoco>")
+    with pytest.raises(ObjectError, match="found 2 .none free."):
+        resolve_user_object(str(fixed))
+    two = tmp_path / "two.xml"
+    two.write_text(f"<mujoco><worldbody>{cube}{cube}</worldbody></mujoco>")
+    with pytest.raises(ObjectError, match="found 2 .2 free"):
+        resolve_user_object(str(two))
+
+
 def test_the_note_of_a_joined_hull_set_gives_the_widest_gap_it_bridged(zoo):
     (gaps,) = [c for c in zoo if c.defect == "hull_gaps"]
     _, notes = _load(gaps)

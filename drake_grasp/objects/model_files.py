@@ -43,7 +43,8 @@ from drake_grasp.objects import packages, sizes
 from drake_grasp.objects.readable_models import drake_readable_model, quiet_unsupported_elements
 from drake_grasp.objects.pieces import IMPORT_VERSION, _decompose
 from drake_grasp.objects.spec import (
-    DEFAULT_DENSITY, DEFAULT_MAX_PIECES, InertiaWarning, ObjectError, ObjectSpec, ShapePiece, YELLOW_PAPER_RGBA,
+    DEFAULT_DENSITY, DEFAULT_MAX_PIECES, InertiaWarning, MeshNote, ObjectError, ObjectSpec, ShapePiece,
+    YELLOW_PAPER_RGBA,
     _cached_hull_obj,
 )
 from drake_grasp.objects.mass_properties import (
@@ -382,6 +383,35 @@ def _expand_includes(element, main_dir: Path, label: str, digest, depth: int = 0
             element.insert(index + offset, grandchild)
 
 
+def _is_free(body) -> bool:
+    """Whether an MJCF body moves freely: a ``<freejoint>``, or a ``<joint type="free">``, of its own."""
+    return body.find("freejoint") is not None or any(j.get("type") == "free" for j in body.findall("joint"))
+
+
+def _the_object_body(label: str, bodies: list) -> list:
+    """The top-level body that is the object, as a one-element list (ObjectError otherwise).
+
+    One body is the object. Among several, the object is the one that moves freely: a body without a
+    joint is welded to the world in MuJoCo, so it is the file's scene. Meta-World's object files, for
+    one, include a scene (a table, walls) beside the object's body, which has a ``<freejoint>``; those
+    bodies are left out, with a note naming them."""
+    if len(bodies) == 1:
+        return bodies
+    def names(group) -> str:
+        return ", ".join(repr(body.get("name", "unnamed")) for body in group)
+
+    free = [body for body in bodies if _is_free(body)]
+    if len(free) != 1:
+        moving = f" ({len(free)} free: {names(free)})" if len(free) > 1 else " (none free)" if bodies else ""
+        raise ObjectError(f"{label}: expected one top-level body, found {len(bodies)}{moving}; give a file with "
+                          "the object alone, or with one free body beside a fixed scene")
+    scene = [body for body in bodies if body is not free[0]]
+    warnings.warn(f"{label}: the object is the free body {free[0].get('name', 'unnamed')!r}; "
+                  f"{len(scene)} fixed to the world (the file's scene: {names(scene)}) left out", MeshNote,
+                  stacklevel=4)
+    return free
+
+
 def _read_mjcf(path: Path, label: str) -> tuple[trimesh.Trimesh, float, tuple | None, str]:
     """(collision mesh in the root body's frame, mass from the geoms (kg), the body's explicit
     inertial (mass, com, inertia) or None, a digest of the file, the files it includes and its
@@ -422,9 +452,7 @@ def _read_mjcf(path: Path, label: str) -> tuple[trimesh.Trimesh, float, tuple | 
     defaults = _mjcf_defaults(root)
     pieces, mass_from_geoms, inertial = [], 0.0, None
     # The world's own geoms (a floor plane, say) are not the object: only bodies are.
-    bodies = [body for worldbody in worldbodies for body in worldbody.findall("body")]
-    if len(bodies) != 1:
-        raise ObjectError(f"{label}: expected one top-level body, found {len(bodies)}")
+    bodies = _the_object_body(label, [body for worldbody in worldbodies for body in worldbody.findall("body")])
 
     def walk(body, X_RB: np.ndarray, default_class: str):
         nonlocal inertial
