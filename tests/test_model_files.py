@@ -97,6 +97,7 @@ def test_an_sdf_with_a_package_uri_to_an_stl_beside_a_relative_obj_loads(tmp_pat
 
 @pytest.mark.parametrize("mesh, content, message", [
     ("missing.stl", None, "mesh meshes/missing.stl: file not found"),
+    ("missing.obj", None, "mesh meshes/missing.obj: file not found (looked for "),  # the error is Drake's parser's
     ("garbage.stl", "solid garbage\n not a facet\nendsolid\n", "mesh meshes/garbage.stl: "),
 ])
 def test_a_mesh_that_cannot_be_read_is_refused_in_one_line(tmp_path, capsys, mesh, content, message):

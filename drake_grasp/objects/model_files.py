@@ -26,6 +26,7 @@ from __future__ import annotations
 import hashlib
 import math
 import os
+import re
 import warnings
 import xml.etree.ElementTree as ElementTree
 from pathlib import Path
@@ -200,7 +201,8 @@ def object_from_sdf(
                 models = parser.AddModelsFromString(text, kind)
     except Exception as error:  # Drake raises RuntimeError with multi-line messages.
         message = str(error).replace(f"<literal-string>.{kind}", str(path.resolve()))
-        problem = packages.download_problem(message, local) or f"cannot parse ({_one_line(message)})"
+        problem = (packages.download_problem(message, local) or _missing_file_problem(message)
+                   or f"cannot parse ({_one_line(message)})")
         raise ObjectError(f"{label}: {problem}") from None
     if len(models) != 1:
         raise ObjectError(f"{label}: expected one model, found {len(models)}")
@@ -381,6 +383,15 @@ def _expand_includes(element, main_dir: Path, label: str, digest, depth: int = 0
         element.remove(child)
         for offset, grandchild in enumerate(list(included)):
             element.insert(index + offset, grandchild)
+
+
+def _missing_file_problem(error_text: str) -> str | None:
+    """A one-line reason for Drake's parse error on a file the model names that is not there (a mesh
+    a collection keeps out of its repository, say), or None: which file, and where it was looked for."""
+    match = re.search(r"URI '([^']+)' resolved to '([^']+)' which does not exist", error_text)
+    if match is None:
+        return None
+    return f"mesh {match.group(1)}: file not found (looked for {os.path.normpath(match.group(2))})"
 
 
 def _is_free(body) -> bool:
