@@ -207,6 +207,11 @@ def test_a_tall_object_left_on_the_table_is_not_held_though_its_sides_stand_high
     sensed = sense_hold(sides, top, lift, table, lift_depths=(at_lift, left))
     assert not sensed.held and sensed.rose_short == pytest.approx(lift)
     assert sense_hold(sides, top, lift, table, lift_depths=(at_lift, risen)).held
+    # One that fell in the lift and shows a nearer face (a tall object landing on its end) came 6 cm
+    # nearer to the camera that held it: it did not rise with the hand either.
+    at_lift, nearer = in_hand_depth(np.full((40, 40), 0.090), mask), in_hand_depth(np.full((40, 40), 0.030), mask)
+    fallen = sense_hold(sides, top, lift, table, lift_depths=(at_lift, nearer))
+    assert not fallen.held and fallen.rose_short == pytest.approx(-0.06)
 
 
 def test_an_object_pressed_into_the_camera_as_the_lift_began_and_left_behind_is_not_held():

@@ -26,11 +26,14 @@ it, still low). The camera rides on the palm, so an object that rose with the ha
 pixel by pixel, while one left on the table is as much deeper as the hand rose. An object whose depth
 grew by `LIFTED_FRACTION` of the lift height or more was left behind, whatever its visible sides'
 heights say (a 17.8 cm union that never rose showed sides whose lowest visible points stood 6.8 cm
-above the table, over the bottom test's threshold: novel seed 31337). Pixel by pixel holds while the
-camera rises along its own axis, as it does with the palm level; with the palm tilted (the upright
-grasp from the arm's side) the camera moves across its view as well, and a 16.5 cm bottle that never
-rose measured -2 to -5 cm and was taken for held (everyday seed 8080). Not yet mended (docs/design.md
-§5.4h says what was tried).
+above the table, over the bottom test's threshold: novel seed 31337). One whose depth shrank that much
+did not rise with the hand either (behaviour 0.37.0): a held object cannot come nearer to a camera on
+the palm holding it, and one that fell can show a nearer face (a 22 cm blob dropped in the lift,
+standing on its end at the table, read -5.8 cm and was taken for held: novel seed 1201). Pixel by
+pixel holds while the camera rises along its own axis, as it does with the palm level; with the palm
+tilted (the upright grasp from the arm's side) the camera moves across its view as well, and a 16.5 cm
+bottle that never rose measured -2 to -5 cm (everyday seed 8080): the -5 cm is now caught, a -2 cm
+would not be (docs/design.md §5.4h says what was tried).
 
 An object pressed against the palm fills the camera's view nearer than the camera ranges (2 cm): a
 20 cm handle held from above filled all of it with the depth reading "too near", and with no point
@@ -117,7 +120,8 @@ class Sensed:
         slid: how far the object moved along the camera's axis over the hold (`depth_change`), m (NaN
             when the hold's start was not seen, or too few pixels saw it both times).
         rose_short: how much less than the hand the object rose from the lift's start to the end
-            (`depth_change`: its depth in the camera's view grows by that much), m (NaN likewise).
+            (`depth_change`: its depth in the camera's view grows by that much; negative: it came
+            nearer), m (NaN likewise).
         moved: how far the object moved in the hand over the hold, in any direction (`in_hand_shift`),
             m (NaN when not measured).
         turned: how far the object turned in the hand over the hold (`in_hand_turn`), degrees (NaN
@@ -385,6 +389,6 @@ def sense_hold(points_W: np.ndarray, top_before: float, lift_height: float,
     rose_short = float("nan")
     if lift_depths is not None:
         rose_short = depth_change(*lift_depths)
-        held = held and not rose_short >= LIFTED_FRACTION * float(lift_height)
+        held = held and not abs(rose_short) >= LIFTED_FRACTION * float(lift_height)
     return Sensed(bool(held), int(len(points_W)), top, expected, bottom, expected_bottom, slid, rose_short, moved,
                   too_near, turned)
