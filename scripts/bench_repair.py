@@ -60,7 +60,7 @@ from drake_grasp.objects.repair import RepairError, closed_shells
 from drake_grasp.objects.solid import solid_of_shells
 
 MESH_CLASSES = ("shared_faces", "hull_gaps", "overlapping", "hollow", "open_caps", "holes", "non_manifold", "flipped",
-                "duplicated", "internal", "degenerate", "everything", "millimetres", "separate", "open_sheet",
+                "duplicated", "internal", "degenerate", "t_junctions", "everything", "millimetres", "separate", "open_sheet",
                 "gltf_binary")
 REFUSED_CLASSES = ("separate", "open_sheet")
 SEEDS = (0, 1, 2, 3, 4)

@@ -75,6 +75,27 @@ def test_a_closed_mesh_with_a_t_junction_sliver_keeps_its_volume():
     assert report.degenerate_faces == 0
 
 
+def test_a_t_junction_left_open_is_split_and_the_box_closes():
+    """The same box without the sliver: the top's vertex 8 lies on the front face's edge 4-5, which no
+    face of the top shares, so the seam is open (as where a CAD export subdivided one part and not
+    the part it meets). The front face is split at 8 and the box is closed, with its volume."""
+    a, b, c = 0.04, 0.03, 0.02
+    v = [(0, 0, 0), (a, 0, 0), (a, b, 0), (0, b, 0), (0, 0, c), (a, 0, c), (a, b, c), (0, b, c), (a / 2, 0, c)]
+    faces = [(0, 2, 1), (0, 3, 2), (0, 1, 5), (0, 5, 4), (3, 7, 6), (3, 6, 2), (0, 4, 7), (0, 7, 3),
+             (1, 2, 6), (1, 6, 5), (4, 8, 7), (8, 5, 6), (8, 6, 7)]
+    mesh = trimesh.Trimesh(np.array(v, float), np.array(faces), process=False)
+    assert not mesh.is_watertight
+    split_faces, split = repair.split_t_junctions(mesh.vertices, mesh.faces, 1e-9)
+    assert split == 1 and len(split_faces) == len(faces) + 1
+    assert trimesh.Trimesh(mesh.vertices, split_faces, process=False).is_watertight
+    shells, report = repair.closed_shells(mesh)
+    assert report.t_junctions == 1 and report.open_edges == 0 and "split at T-junctions" in report.describe()
+    assert sum(s.volume for s in shells) == pytest.approx(a * b * c, rel=1e-9)
+    # A real hole is left to the hole filler: a box without its top has no vertex on another's edge.
+    open_box = trimesh.Trimesh(np.array(v[:8], float), np.array(faces[:10]), process=False)
+    assert repair.split_t_junctions(open_box.vertices, open_box.faces, 1e-9)[1] == 0
+
+
 def test_a_generated_letter_with_a_sliver_loads():
     from drake_grasp.objects.novel import novel_object
 

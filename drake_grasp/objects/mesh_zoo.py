@@ -14,6 +14,7 @@ The classes (``CLASSES``):
 * overlapping shells (CAD exports: a handle's shell running into a body's);
 * open caps, holes, non-manifold edges, flipped faces, duplicated faces, internal faces, degenerate
   triangles (scans, visual meshes, hand-edited files), and all of these at once in a triangle soup;
+* seams left open at T-junctions (CAD exports that refined one part and not the part it meets);
 * a millimetre file; truly separate parts, an open sheet and a point cloud (refused);
 * URDF and MJCF models with placeholder inertias, an MJCF naming an STL mesh, a glTF binary.
 
@@ -280,6 +281,23 @@ def degenerate(out: Path, seed: int) -> ZooCase:
     return ZooCase(path.stem, "degenerate", path, "repaired", "", float(mesh.volume))
 
 
+def t_junctions(out: Path, seed: int) -> ZooCase:
+    """A closed solid some of whose faces were split at a point of one edge while the face across that
+    edge was not (a vertex on its neighbour's edge, as a CAD export leaves where it refined one part
+    and not the part it meets): the seams are open, though no surface is missing."""
+    rng = _rng(seed, "t_junctions")
+    mesh = _base_convex(rng)
+    vertices, faces = mesh.vertices.copy(), [tuple(face) for face in mesh.faces]
+    for index in rng.choice(len(faces), size=int(rng.integers(2, 6)), replace=False):
+        a, b, c = faces[index]
+        on_edge = vertices[a] + rng.uniform(0.3, 0.7) * (vertices[b] - vertices[a])
+        vertices = np.vstack([vertices, on_edge])
+        faces[index] = (a, len(vertices) - 1, c)  # the face split at the new vertex; its neighbour not
+        faces.append((len(vertices) - 1, b, c))
+    path = _write(trimesh.Trimesh(vertices, np.array(faces), process=False), out / f"t_junctions_{seed}.obj")
+    return ZooCase(path.stem, "t_junctions", path, "repaired", "split at T-junctions", float(mesh.volume))
+
+
 def everything(out: Path, seed: int) -> ZooCase:
     """Several defects at once, as a real file has them: a solid stored as cells sharing faces, one
     cell with a hole, some faces flipped and some duplicated, a degenerate triangle, a stray fin,
@@ -449,6 +467,7 @@ GENERATORS = {
     "duplicated": duplicated,
     "internal": internal,
     "degenerate": degenerate,
+    "t_junctions": t_junctions,
     "everything": everything,
     "millimetres": millimetres,
     "separate": separate,

@@ -9,6 +9,9 @@ outward-wound shells. The steps, each counted for the one-line note a user sees:
 1. weld vertices that coincide, drop degenerate triangles (repeated or collinear vertices), except
    that a collinear one in a surface that is closed with it is kept (the sliver of a T-junction:
    dropping it opens a slit that no hole filler closes);
+1b. split faces at T-junctions: where a vertex of the open boundary lies on another face's open edge
+   (a part subdivided apart from the part it meets, as a CAD export leaves it: IsaacGym's Factory
+   "subdiv" meshes), that face is split there, so that the two sides' edges pair up;
 2. drop duplicated faces: of two copies with the same winding one is kept; two copies with opposite
    windings are the wall between two cells that share that face, and both go (the cells become one
    shell);
@@ -38,6 +41,7 @@ import numpy as np
 import trimesh
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
+from scipy.spatial import cKDTree
 
 # A patch encloses a solid only if its volume is at least this fraction of its convex hull's.
 MIN_FILL_FRACTION = 0.02
@@ -51,6 +55,9 @@ MIN_CLOSED_THICKNESS = 0.1
 # span, but its holes are specks), not a sheet (a square sheet's boundary is 4 times the root of its
 # area), a tube without caps (6 × 10 cm: 2.7 times) or a bowl.
 MAX_HOLES_PERIMETER = 0.05
+# A vertex this close to a face's open edge (a fraction of the mesh's largest extent: 0.1 µm in 10 cm)
+# lies on it: a T-junction, where one side of a seam was subdivided and the other not.
+T_JUNCTION_TOLERANCE = 1e-6
 
 
 def _unique_rows(rows: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -88,6 +95,7 @@ class RepairReport:
     welded_vertices: int = 0
     degenerate_faces: int = 0
     duplicate_faces: int = 0
+    t_junctions: int = 0  # faces split where a vertex lay on their open edge
     internal_walls: int = 0  # faces dropped in opposite-wound pairs (walls between cells)
     non_manifold_edges: int = 0
     flipped_faces: int = 0
@@ -102,7 +110,7 @@ class RepairReport:
     @property
     def changed(self) -> bool:
         return any((self.degenerate_faces, self.duplicate_faces, self.internal_walls, self.non_manifold_edges,
-                    self.flipped_faces, self.open_edges, self.dropped_faces))
+                    self.flipped_faces, self.open_edges, self.dropped_faces, self.t_junctions))
 
     def describe(self) -> str:
         """One line: what was repaired and how much the volume changed (empty if nothing was)."""
@@ -110,7 +118,8 @@ class RepairReport:
         if self.open_edges:
             parts.append(f"closed {self.closed_patches} open surface{'s' if self.closed_patches != 1 else ''} "
                          f"({self.open_edges} open edges)")
-        for count, what in ((self.non_manifold_edges, "non-manifold edges split"),
+        for count, what in ((self.t_junctions, "faces split at T-junctions"),
+                            (self.non_manifold_edges, "non-manifold edges split"),
                             (self.flipped_faces, "faces re-wound"),
                             (self.duplicate_faces, "duplicate faces dropped"),
                             (self.internal_walls, "internal wall faces dropped"),
@@ -157,6 +166,54 @@ def closed_parts(mesh: trimesh.Trimesh) -> list[trimesh.Trimesh]:
         part.remove_unreferenced_vertices()
         parts.append(part)
     return parts
+
+
+def _open_edges(faces: np.ndarray) -> np.ndarray:
+    """(faces, 3) bool: whether face i's edge k (from its vertex k to k + 1) belongs to no other face."""
+    edges = np.sort(np.stack([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]], axis=1), axis=2)
+    inverse, counts = _unique_rows(edges.reshape(-1, 2))
+    return (counts[inverse] == 1).reshape(-1, 3)
+
+
+def split_t_junctions(vertices: np.ndarray, faces: np.ndarray, tolerance: float) -> tuple[np.ndarray, int]:
+    """(faces, how many were split): each face with an open edge on which vertices of the open boundary
+    lie (within `tolerance`, m, strictly between its ends) replaced by a fan from its opposite vertex
+    through them. A closed mesh, or one whose holes are real, comes back as it was."""
+    faces = np.asarray(faces, np.int64)
+    vertices = np.asarray(vertices, float)
+    split = 0
+    for _ in range(4):  # a face split along one open edge may have another
+        is_open = _open_edges(faces)
+        if not is_open.any():
+            break
+        boundary = np.unique(np.concatenate([faces[is_open], faces[np.roll(is_open, 1, axis=1)]]))
+        tree = cKDTree(vertices[boundary])
+        kept, added = np.ones(len(faces), bool), []
+        for index in np.flatnonzero(is_open.any(axis=1)):
+            face = faces[index]
+            for k in np.flatnonzero(is_open[index]):
+                a, b, c = face[k], face[(k + 1) % 3], face[(k + 2) % 3]
+                start, along = vertices[a], vertices[b] - vertices[a]
+                length = float(np.linalg.norm(along))
+                if length <= 2.0 * tolerance:
+                    continue
+                on = []
+                for j in tree.query_ball_point(start + 0.5 * along, 0.5 * length + tolerance):
+                    v = boundary[j]
+                    t = float((vertices[v] - start) @ along) / length**2
+                    if (v not in (a, b) and tolerance < t * length < length - tolerance
+                            and np.linalg.norm(start + t * along - vertices[v]) <= tolerance):
+                        on.append((t, v))
+                if on:
+                    chain = [a] + [v for _, v in sorted(on)] + [b]
+                    added.extend((chain[i], chain[i + 1], c) for i in range(len(chain) - 1))
+                    kept[index] = False
+                    split += 1
+                    break
+        if not added:
+            break
+        faces = np.concatenate([faces[kept], np.asarray(added, np.int64)])
+    return faces, split
 
 
 def _drop_duplicates(faces: np.ndarray, report: RepairReport) -> np.ndarray:
@@ -348,7 +405,9 @@ def _part_shells(mesh: trimesh.Trimesh, report: RepairReport, opened: list) -> l
         # and no volume.
         degenerate = repeated
     report.degenerate_faces += int(np.count_nonzero(degenerate))
-    faces = _drop_duplicates(faces[~degenerate], report)
+    faces, split = split_t_junctions(mesh.vertices, faces[~degenerate], T_JUNCTION_TOLERANCE * scale)
+    report.t_junctions += split
+    faces = _drop_duplicates(faces, report)
     if len(faces) == 0:
         return []
     patches, non_manifold = _patches(faces)
