@@ -12,7 +12,7 @@ One concept per module:
   Inventor .iv and VRML .wrl), `graspit_files` (GraspIt!'s body files), `threemf_mesh` (3D printing's
   .3mf, in its declared unit), `usd_mesh` (OpenUSD, with the optional usd-core), `other_formats`
   (formats not read, and what to give instead), `repair` (a real mesh into closed shells), `solid` (which shells are one object, and their union), `sizes` (the sizes the
-  hand can grasp; a file outside them refused), `model_files` (SDFormat, URDF, MJCF),
+  hand can grasp; a file outside them refused), `model_files` (SDFormat, URDF, MJCF) with `mjcf_files` (MJCF read here),
   `readable_models` (a model file's text and meshes as Drake's parser can take them),
   `inertia_checks` (a file's inertial checked), `packages` (where ``package://`` and Gazebo's
   ``model://`` URIs point),
@@ -42,7 +42,7 @@ _PARTS = ("spec", "mass_properties", "catalogue", "names", "mesh_files", "pieces
 _MODULES = _PARTS + ("cleaning", "collada_mesh", "inertia_checks", "mesh_zoo", "mujoco_msh", "near_primitives", "novel", "packages",
                      "piece_budget", "readable_models", "repair", "sizes", "solid", "standing", "vtk_mesh",
                      "inventor_mesh", "inventor_scene", "inventor_shapes", "graspit_files", "threemf_mesh",
-                     "other_formats", "usd_mesh")
+                     "other_formats", "usd_mesh", "mjcf_files")
 
 
 def __getattr__(name: str):
