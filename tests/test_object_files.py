@@ -58,17 +58,23 @@ def test_cells_that_share_faces_are_one_object_with_the_exact_volume():
     assert len(result.components) == 1 and result.components[0].volume == pytest.approx(2 * 0.04**3, rel=1e-6)
 
 
+# A 4 × 3 × 2 cm box whose top is fanned through vertex 8, the midpoint of its edge with the front
+# face: the front face does not have that vertex (a T-junction).
+_BOX = (0.04, 0.03, 0.02)
+_BOX_T_VERTICES = np.array([(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1),
+                            (0.5, 0, 1)], float) * _BOX
+_BOX_T_FACES = [(0, 2, 1), (0, 3, 2), (0, 1, 5), (0, 5, 4), (3, 7, 6), (3, 6, 2), (0, 4, 7), (0, 7, 3),
+                (1, 2, 6), (1, 6, 5),
+                (4, 8, 7), (8, 5, 6), (8, 6, 7)]  # the top, through the front edge's midpoint 8
+
+
 def test_a_closed_mesh_with_a_t_junction_sliver_keeps_its_volume():
     """A box whose top has a vertex on its edge with the front, closed by a zero-area triangle (a
     T-junction sliver, as a boolean union rounded to micrometres leaves): dropping the sliver would
     open a slit, so it is kept, and the solid is the box."""
-    a, b, c = 0.04, 0.03, 0.02
-    v = [(0, 0, 0), (a, 0, 0), (a, b, 0), (0, b, 0), (0, 0, c), (a, 0, c), (a, b, c), (0, b, c), (a / 2, 0, c)]
-    faces = [(0, 2, 1), (0, 3, 2), (0, 1, 5), (0, 5, 4), (3, 7, 6), (3, 6, 2), (0, 4, 7), (0, 7, 3),
-             (1, 2, 6), (1, 6, 5),
-             (4, 8, 7), (8, 5, 6), (8, 6, 7),  # the top, through the front edge's midpoint 8
-             (4, 5, 8)]  # the sliver: the front's edge 4-5 against the top's 4-8-5
-    mesh = trimesh.Trimesh(np.array(v, float), np.array(faces), process=False)
+    a, b, c = _BOX
+    faces = _BOX_T_FACES + [(4, 5, 8)]  # the sliver: the front's edge 4-5 against the top's 4-8-5
+    mesh = trimesh.Trimesh(_BOX_T_VERTICES, np.array(faces), process=False)
     assert mesh.is_watertight and min(mesh.area_faces) == 0.0
     shells, report = repair.closed_shells(mesh)
     assert sum(s.volume for s in shells) == pytest.approx(a * b * c, rel=1e-9)
@@ -79,11 +85,9 @@ def test_a_t_junction_left_open_is_split_and_the_box_closes():
     """The same box without the sliver: the top's vertex 8 lies on the front face's edge 4-5, which no
     face of the top shares, so the seam is open (as where a CAD export subdivided one part and not
     the part it meets). The front face is split at 8 and the box is closed, with its volume."""
-    a, b, c = 0.04, 0.03, 0.02
-    v = [(0, 0, 0), (a, 0, 0), (a, b, 0), (0, b, 0), (0, 0, c), (a, 0, c), (a, b, c), (0, b, c), (a / 2, 0, c)]
-    faces = [(0, 2, 1), (0, 3, 2), (0, 1, 5), (0, 5, 4), (3, 7, 6), (3, 6, 2), (0, 4, 7), (0, 7, 3),
-             (1, 2, 6), (1, 6, 5), (4, 8, 7), (8, 5, 6), (8, 6, 7)]
-    mesh = trimesh.Trimesh(np.array(v, float), np.array(faces), process=False)
+    a, b, c = _BOX
+    faces = _BOX_T_FACES
+    mesh = trimesh.Trimesh(_BOX_T_VERTICES, np.array(faces), process=False)
     assert not mesh.is_watertight
     split_faces, split = repair.split_t_junctions(mesh.vertices, mesh.faces, 1e-9)
     assert split == 1 and len(split_faces) == len(faces) + 1
@@ -92,7 +96,7 @@ def test_a_t_junction_left_open_is_split_and_the_box_closes():
     assert report.t_junctions == 1 and report.open_edges == 0 and "split at T-junctions" in report.describe()
     assert sum(s.volume for s in shells) == pytest.approx(a * b * c, rel=1e-9)
     # A real hole is left to the hole filler: a box without its top has no vertex on another's edge.
-    open_box = trimesh.Trimesh(np.array(v[:8], float), np.array(faces[:10]), process=False)
+    open_box = trimesh.Trimesh(_BOX_T_VERTICES[:8], np.array(faces[:10]), process=False)
     assert repair.split_t_junctions(open_box.vertices, open_box.faces, 1e-9)[1] == 0
 
 

@@ -139,10 +139,16 @@ class RepairReport:
         return text
 
 
+def _face_edges(faces: np.ndarray) -> np.ndarray:
+    """(3 m, 2) the faces' edges as sorted vertex pairs: edge k (from vertex k to k + 1) of face i in
+    row k m + i."""
+    return np.sort(np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]]), axis=1)
+
+
 def _patches(faces: np.ndarray) -> tuple[list[np.ndarray], int]:
     """Face indices of each patch (faces joined across edges of exactly two faces), and the number
     of edges of three or more faces."""
-    edges = np.sort(np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]]), axis=1)
+    edges = _face_edges(faces)
     owner = np.tile(np.arange(len(faces)), 3)
     inverse, counts = _unique_rows(edges)
     manifold = counts[inverse] == 2
@@ -170,9 +176,8 @@ def closed_parts(mesh: trimesh.Trimesh) -> list[trimesh.Trimesh]:
 
 def _open_edges(faces: np.ndarray) -> np.ndarray:
     """(faces, 3) bool: whether face i's edge k (from its vertex k to k + 1) belongs to no other face."""
-    edges = np.sort(np.stack([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]], axis=1), axis=2)
-    inverse, counts = _unique_rows(edges.reshape(-1, 2))
-    return (counts[inverse] == 1).reshape(-1, 3)
+    inverse, counts = _unique_rows(_face_edges(faces))
+    return (counts[inverse] == 1).reshape(3, -1).T
 
 
 def split_t_junctions(vertices: np.ndarray, faces: np.ndarray, tolerance: float) -> tuple[np.ndarray, int]:
