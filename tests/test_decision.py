@@ -163,6 +163,23 @@ def test_a_round_object_takes_the_spherical_grasp_where_the_box_leads():
     assert choose_shape(near) == "sphere" and decision_margin(near) == pytest.approx(0.4)
 
 
+def test_a_round_object_narrower_than_the_box_grasp_wraps_keeps_the_box():
+    from drake_grasp.primitives.round_sides import WIDE_FOOTPRINT, wide_resemblance
+
+    ring, flask = wide_resemblance([0.25, 0.24]), wide_resemblance([0.14, 0.136])  # footprints, m
+    assert ring > 0.99 and flask < 0.01 and wide_resemblance([0.3, WIDE_FOOTPRINT]) == pytest.approx(0.5)
+    assert math.isnan(wide_resemblance([0.1, math.nan])) and math.isnan(wide_resemblance([0.1, 0.0]))
+    res = {"sphere": 0.05, "cylinder": 0.01, "box": 0.95, "flat": 0.1, "upright": 0.0, "low": 0.0, "round": 1.0}
+    assert choose_shape({**res, "wide": ring}) == "sphere"
+    assert choose_shape({**res, "wide": flask}) == "box"
+    assert choose_shape(res) == "sphere"  # no wide resemblance measured: every round object, as before 0.38.0
+    # The paper's sphere keeps its grasp whatever the width; a low squat ring still takes the flower grasp.
+    assert choose_shape({**res, "sphere": 0.99, "wide": flask}) == "sphere"
+    assert choose_shape({**res, "low": 1.0, "squat": 1.0, "wide": flask}) == "flat"
+    # The margin: bounded by the wide resemblance's distance from its threshold.
+    assert decision_margin({**res, "wide": 0.6}) == pytest.approx(0.2)
+
+
 def test_a_thin_round_sided_object_takes_the_flower_grasp_where_the_box_remains():
     from drake_grasp.primitives.round_sides import thin_round_resemblance
 

@@ -23,9 +23,13 @@ known table), so it decides first:
 
    a. where it picks the box and the round resemblance (`primitives.round_sides`, from the table-top
       estimate) is at least `ROUND_THRESHOLD` (1/2: sides that curve away below the top, on a compact
-      footprint), the **sphere** instead, unless the object is low (b.): the box resemblance saturates
-      on every irregular solid, and three fingers round a ring or a blob hold it where two against one
-      slip (docs/design.md §5.4j). A sphere already used up (`exclude`) leaves the box. A low round
+      footprint), the **sphere** instead, if the object is wide and not low (b.): the box resemblance
+      saturates on every irregular solid, and three fingers round a ring or a blob wider than the box
+      grasp wraps (the wide resemblance, `primitives.round_sides`, at least `WIDE_THRESHOLD`: the
+      footprint's shorter side over 21 cm) hold it where two against one slip; a narrower round object
+      keeps the box, which held more real files than the sphere did (docs/design.md §5.4j, behaviour
+      0.38.0; without a wide resemblance, every round object, as before). A sphere already used up
+      (`exclude`) leaves the box. A low round
       object (b.) keeps the box, unless it is also squat (`primitives.low.squat_resemblance`: lower than
       5.5 cm, a ring or a puck): then **flat**, the flower grasp, whose landed fingertips meet its round
       side at or above its widest line (§5.4k); a flat grasp already used up leaves the box;
@@ -53,8 +57,9 @@ known table), so it decides first:
 The *margin* says how clear the decision was, in [0, 1]: in step 3, the lead of the best resemblance
 over the next; a flat resemblance near its threshold makes any decision close, so its own distance
 from the threshold, 2 |flat - 1/2|, bounds the margin from above, and so does the upright one's, and
-the low one's where the sphere leads, and the round one's where the box leads (and, on an object not
-round, the thin-round one's, and the thin-narrow one's where the box or the cylinder leads).
+the low one's where the sphere leads, and the round one's where the box leads (on a round object the
+low one's too, then the squat one's if it is low, the wide one's if not; on an object not round, the
+thin-round one's, and the thin-narrow one's where the box or the cylinder leads).
 Without those resemblances (the paper's perception), both are the paper's argmax and its lead.
 """
 
@@ -67,6 +72,7 @@ UPRIGHT = "upright"
 SLENDER = "slender"  # not a choice: it turns an upright object's choice into the flat one (step 2)
 LOW = "low"  # not a choice: it turns the sphere's choice into the flat one (step 3b)
 ROUND = "round"  # not a choice: it turns the box's choice into the sphere's (step 3a)
+WIDE = "wide"  # not a choice: only a wide round object's box turns into the sphere (step 3a)
 SQUAT = "squat"  # not a choice: it turns a low round object's box into the flat choice (step 3a)
 THIN_ROUND = "thin_round"  # not a choice: it turns a thin round-sided object's box into the flat one (3c)
 THIN_NARROW = "thin_narrow"  # not a choice: it turns a thin object's box or cylinder, narrow at the grasp, flat (3c)
@@ -76,8 +82,10 @@ UPRIGHT_THRESHOLD = 0.5
 SLENDER_THRESHOLD = 0.5
 LOW_THRESHOLD = 0.5
 ROUND_THRESHOLD = 0.5
+WIDE_THRESHOLD = 0.5
 SQUAT_THRESHOLD = 0.5
 THIN_ROUND_THRESHOLD = 0.5
+WIDE_THRESHOLD = 0.5
 THIN_NARROW_THRESHOLD = 0.5
 
 
@@ -115,7 +123,9 @@ def _refined(shape: str, resemblances: dict, exclude=()) -> str:
     round_, low, squat = _value(resemblances, ROUND), _value(resemblances, LOW), _value(resemblances, SQUAT)
     is_low = math.isfinite(low) and low >= LOW_THRESHOLD
     is_round = math.isfinite(round_) and round_ >= ROUND_THRESHOLD
-    if shape == "box" and is_round and not is_low and "sphere" not in exclude:
+    wide = _value(resemblances, WIDE)
+    is_wide = not math.isfinite(wide) or wide >= WIDE_THRESHOLD  # not measured: the rule before 0.38.0
+    if shape == "box" and is_round and not is_low and is_wide and "sphere" not in exclude:
         return "sphere"
     if shape == "box" and is_round and is_low and FLAT not in exclude and math.isfinite(squat) \
             and squat >= SQUAT_THRESHOLD:
@@ -160,12 +170,16 @@ def decision_margin(resemblances: dict) -> float:
     leader = max((s for s in SHAPES if s in resemblances), key=lambda s: _value(resemblances, s))
     low, round_ = _value(resemblances, LOW), _value(resemblances, ROUND)
     squat = _value(resemblances, SQUAT)
-    if leader == "box" and math.isfinite(round_):  # step 3a: roundness decides, lowness if round, then squatness
+    wide = _value(resemblances, WIDE)
+    if leader == "box" and math.isfinite(round_):  # step 3a: roundness decides, lowness if round, then
+        # squatness if low, wideness if not
         bound = min(bound, 2.0 * abs(round_ - ROUND_THRESHOLD))
         if round_ >= ROUND_THRESHOLD and math.isfinite(low):
             bound = min(bound, 2.0 * abs(low - LOW_THRESHOLD))
             if low >= LOW_THRESHOLD and math.isfinite(squat):
                 bound = min(bound, 2.0 * abs(squat - SQUAT_THRESHOLD))
+            elif low < LOW_THRESHOLD and math.isfinite(wide):
+                bound = min(bound, 2.0 * abs(wide - WIDE_THRESHOLD))
     if leader == "sphere" and math.isfinite(low):  # step 3b
         bound = min(bound, 2.0 * abs(low - LOW_THRESHOLD))
     if leader == "cylinder" or (leader == "box" and not (math.isfinite(round_) and round_ >= ROUND_THRESHOLD)):  # 3c

@@ -23,6 +23,24 @@ low resemblances):
 
 The resemblance is their product. Both middles are choices between the groups measured.
 
+**Wide** (`wide_resemblance`, behaviour 0.38.0): where the round rule sends a round object to the
+spherical grasp, only if its footprint's shorter side is wider than `WIDE_FOOTPRINT` (21 cm), a logistic
+step up of width `WIDE_FOOTPRINT_WIDTH`. The box grasp closes across that side; at its standoff
+(`grasps.box_grasp`) its proximal links meet the top edges at about 45° up to about 20 cm (the knuckles'
+50 mm and the proximal links' 70 mm at 45°, both sides), and wider than that only the distal links
+reach the sides. Measured camera-driven, the grasp forced, trial seeds 1-2, one attempt
+(docs/results/holding/round_rule.md):
+
+* round generated objects the rule sent to the sphere (novel seeds 1201 and 1301): wider than 22 cm
+  (a blob, two rings), the spherical grasp 6/6 and the box grasp 0/6; 14-20 cm, 19/24 each;
+* round real files the rule sent to the sphere (19 files: Columbia's scans, GraspIt!'s objects, the
+  object_sim set, YCB's pudding box), all under 21 cm but one: the box grasp 22/38, the spherical 16/38
+  (it dropped flasks, a cracker box, the bunny and a 1.8 kg sphere that the box grasp held; it held a
+  teapot, a pitcher and a coffee can that the box grasp dropped).
+
+So the middle is between the groups measured: 20 cm, where the two grasps tie, and 22 cm, where only
+the spherical grasp holds.
+
 **Thin and round-sided** (`thin_round_resemblance`): the same round sides without the compact footprint,
 on an object lower than `THIN_ROUND_HEIGHT` (3.2 cm) that the flower grasp can land round (its
 footprint's shorter side under `low.FLOWER_MAX_WIDTH`). A bar, a tube or an elongated pebble lying
@@ -44,6 +62,8 @@ ROUND_RISE = 0.004  # m
 ROUND_RISE_WIDTH = 0.0007  # m
 COMPACT_RATIO = 1.6
 COMPACT_RATIO_WIDTH = 0.05
+WIDE_FOOTPRINT = 0.21  # m
+WIDE_FOOTPRINT_WIDTH = 0.005  # m
 THIN_ROUND_HEIGHT = 0.032  # m
 THIN_ROUND_HEIGHT_WIDTH = 0.003  # m
 
@@ -62,6 +82,22 @@ def table_top_roundness(estimate) -> float:
     """`round_resemblance` of a table-top estimate (`table_top.TableTopEstimate`): its edge rise and its
     spans along its footprint's sides."""
     return round_resemblance(float(estimate.edge_rise), np.asarray(estimate.extents_sides, float)[:2])
+
+
+def wide_resemblance(footprint) -> float:
+    """How much a footprint spanning `footprint` (m, its two horizontal sides) is wider than the box grasp
+    wraps, in [0, 1]: a logistic step up in its shorter side, 1/2 at `WIDE_FOOTPRINT` (module
+    docstring); NaN when a side is not finite or not positive."""
+    footprint = np.asarray(footprint, float)
+    if footprint.size == 0 or not np.all(np.isfinite(footprint)) or np.min(footprint) <= 0.0:
+        return math.nan
+    return 1.0 - step_down(float(np.min(footprint)), WIDE_FOOTPRINT, WIDE_FOOTPRINT_WIDTH)
+
+
+def table_top_wideness(estimate) -> float:
+    """`wide_resemblance` of a table-top estimate (`table_top.TableTopEstimate`): the spans along its
+    footprint's sides."""
+    return wide_resemblance(np.asarray(estimate.extents_sides, float)[:2])
 
 
 def round_sided(edge_rise: float) -> float:
