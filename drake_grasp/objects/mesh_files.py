@@ -136,7 +136,7 @@ def _read_mesh(path: Path, label: str, scale) -> trimesh.Trimesh:
 
 
 def _solid_from_mesh(mesh: trimesh.Trimesh, label: str, join_gap: float | None = None,
-                     keep_largest: bool = False) -> trimesh.Trimesh:
+                     keep_largest: bool = False, one_body: bool = False) -> trimesh.Trimesh:
     """The solid a mesh's triangles describe (metres): repaired into closed shells
     (:mod:`drake_grasp.objects.repair`, saying what was repaired with a MeshNote) and its shells
     joined into one object (:mod:`drake_grasp.objects.solid`). The mesh returned may hold several
@@ -147,11 +147,11 @@ def _solid_from_mesh(mesh: trimesh.Trimesh, label: str, join_gap: float | None =
         raise ObjectError(str(error)) from None
     if report.changed:
         warnings.warn(f"{label}: {report.describe()}", MeshNote, stacklevel=3)
-    return _user_solid(shells, label, keep_largest, join_gap)
+    return _user_solid(shells, label, keep_largest, join_gap, one_body)
 
 
 def _cached_solid(mesh: trimesh.Trimesh, label: str, key: str, join_gap: float | None,
-                  keep_largest: bool) -> trimesh.Trimesh:
+                  keep_largest: bool, one_body: bool = False) -> trimesh.Trimesh:
     """:func:`_solid_from_mesh`, cached under `key` (a hash of the file's content and the options)
     beside the decompositions: a second load reads the repaired, joined solid and repeats its notes.
     A refused file is not cached (its error is computed again, and is the same)."""
@@ -163,7 +163,7 @@ def _cached_solid(mesh: trimesh.Trimesh, label: str, key: str, join_gap: float |
         return trimesh.Trimesh(stored["vertices"], stored["faces"], process=False)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        solid = _solid_from_mesh(mesh, label, join_gap, keep_largest)
+        solid = _solid_from_mesh(mesh, label, join_gap, keep_largest, one_body)
     notes = []
     for w in caught:
         text = str(w.message)
@@ -186,12 +186,14 @@ def _content_digest(path: Path) -> str:
 
 
 def _load_checked_mesh(path: Path, label: str, scale, join_gap: float | None = None,
-                       keep_largest: bool = False) -> trimesh.Trimesh:
+                       keep_largest: bool = False, one_body: bool = False) -> trimesh.Trimesh:
     """:func:`_read_mesh`, then :func:`_solid_from_mesh`, cached by the file's content and the
-    options (a model file's mesh geometry; `scale` one factor or three)."""
+    options (a model file's mesh geometry; `scale` one factor or three; `one_body`: see
+    :func:`_user_solid`)."""
     digest = _content_digest(path) if path.is_file() else ""
-    key = hashlib.sha256(f"{digest}|{_scale_key(scale)}|{join_gap!r}|{keep_largest}".encode()).hexdigest()[:24]
-    return _cached_solid(_read_mesh(path, label, scale), label, key, join_gap, keep_largest)
+    options = f"{digest}|{_scale_key(scale)}|{join_gap!r}|{keep_largest}" + ("|one-body" if one_body else "")
+    key = hashlib.sha256(options.encode()).hexdigest()[:24]
+    return _cached_solid(_read_mesh(path, label, scale), label, key, join_gap, keep_largest, one_body)
 
 
 def _scale_key(scale) -> str:
@@ -247,10 +249,16 @@ def _rests_stably_upright(hull: trimesh.Trimesh, p_Ocm: np.ndarray) -> bool:
 
 
 def _user_solid(shells: list[trimesh.Trimesh], label: str, keep_largest: bool,
-                join_gap: float | None = None) -> trimesh.Trimesh:
+                join_gap: float | None = None, one_body: bool = False) -> trimesh.Trimesh:
     """The object closed shells make: those within the join gap of each other are one rigid object
     (their union); parts farther apart are an ObjectError naming their count and smallest gap,
-    unless `keep_largest` keeps the largest (with a MeshNote)."""
+    unless `keep_largest` keeps the largest (with a MeshNote).
+
+    `one_body`: the mesh is a model file's collision geometry of one link, which the file declares one
+    rigid body, so parts farther apart are that body's parts (with a MeshNote), as a physics engine
+    takes them. pybullet's procedural random_urdfs ship such meshes: 897's convex pieces form five
+    clusters 4.6 mm or more apart. A bare mesh declares nothing, and two objects in one file are
+    as likely as one object in parts, so there the error stands."""
     from drake_grasp.objects.solid import solid_of_shells
 
     solid = solid_of_shells(shells, join_gap)
@@ -262,6 +270,12 @@ def _user_solid(shells: list[trimesh.Trimesh], label: str, keep_largest: bool,
                       f"(scan noise: together {share:.2g} % of the volume, the largest {largest:.2g} mm across)",
                       MeshNote, stacklevel=3)
         solid = dataclasses.replace(solid, components=solid.components[:-len(specks)])
+    if len(solid.components) > 1 and one_body and not keep_largest:
+        count, smallest = len(solid.components), solid.smallest_gap * 1000
+        warnings.warn(f"{label}: {count} separate parts (the smallest gap {smallest:.1f} mm, over the join gap "
+                      f"{solid.gap * 1000:.3g} mm) are one rigid body, as the file's link declares (mass and "
+                      "inertia from their union)", MeshNote, stacklevel=3)
+        return trimesh.util.concatenate([component.mesh for component in solid.components])
     if len(solid.components) > 1:
         count, gap, smallest = len(solid.components), solid.gap * 1000, solid.smallest_gap * 1000
         if not keep_largest:

@@ -71,7 +71,7 @@ def _piece_from_drake_shape(
         return [ShapePiece("convex", (), p, rpy, _cached_hull_obj("sdf_convex", vertices))]
     if isinstance(shape, Mesh):
         scale = np.asarray(shape.scale3(), float)  # per axis: a model file may scale a mesh unevenly
-        mesh = _load_checked_mesh(Path(shape.source().path()), label, scale)
+        mesh = _load_checked_mesh(Path(shape.source().path()), label, scale, one_body=True)
         key = hashlib.sha256(Path(shape.source().path()).read_bytes()).hexdigest()[:20]
         paths = _decompose(mesh, f"sdf_mesh-{key}-{_scale_key(scale)}-{max_pieces}", max_pieces, label)
         return [ShapePiece("convex", (), p, rpy, path) for path in paths]
@@ -86,7 +86,8 @@ def _one_mesh_mass_properties(geometries, label: str) -> tuple[float, np.ndarray
     shape, X_BG = geometries[0]
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # its notes were given when its pieces were made
-        solid = _load_checked_mesh(Path(shape.source().path()), label, np.asarray(shape.scale3(), float))
+        solid = _load_checked_mesh(Path(shape.source().path()), label, np.asarray(shape.scale3(), float),
+                                   one_body=True)
     R_BG = X_BG.rotation().matrix()
     unit_inertia = np.asarray(solid.moment_inertia, float) / float(solid.mass)
     return float(solid.volume), R_BG @ np.asarray(solid.center_mass) + X_BG.translation(), R_BG @ unit_inertia @ R_BG.T

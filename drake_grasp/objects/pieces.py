@@ -109,12 +109,16 @@ def _decompose(mesh: trimesh.Trimesh, key: str, max_pieces: int, label: str = "m
         warnings.warn(f"{label}: convex pieces merged to {len(parts)}: their hulls add "
                       f"{100 * added / float(mesh.volume):.1f} % to the volume for contact (not to the mass)",
                       MeshNote, stacklevel=3)
-    parts = [(vertices, None) for vertices in parts]
-    budgeted = [piece_budget.budgeted_piece(vertices)[0] for vertices, _ in parts]
+    budgeted = [piece_budget.budgeted_piece(vertices)[0] for vertices in parts]
     try:
         clean, _ = cleaning.clean_pieces(budgeted, float(mesh.volume))
     except cleaning.CleaningError as error:
-        raise ObjectError(f"{label}: {error}") from None
+        clean = _clean_shell_pieces(budgeted, float(mesh.volume), added)
+        if clean is None:
+            raise ObjectError(f"{label}: {error}") from None
+        warnings.warn(f"{label}: a shell of thin parts ({float(mesh.volume) * 1e6:.2g} cm³ of material): "
+                      f"its merged convex pieces ({sum(piece.volume for piece in clean) * 1e6:.2g} cm³) "
+                      "are its solid for contact (not for the mass)", MeshNote, stacklevel=3)
     parts = [(piece.vertices, piece.faces) for piece in clean]
     # Write into a private directory, then rename it into place: a concurrent process (parallel
     # trials) either sees the complete directory or none, and the first to finish wins.
@@ -133,3 +137,30 @@ def _decompose(mesh: trimesh.Trimesh, key: str, max_pieces: int, label: str = "m
         # Another process got there first; use its pieces.
     names = json.loads(manifest.read_text())["pieces"]
     return [str((directory / name).resolve()) for name in names]
+
+
+def _clean_shell_pieces(budgeted: list[np.ndarray], material_volume: float, added: float):
+    """Clean pieces for a part whose plain cleaning would remove too much, or None if this does not help.
+
+    Two things make cleaning refuse a solid that contact can still take whole:
+    - a merged piece just over `cleaning.MIN_THICKNESS` can come out of the vertex budget (a hull of
+      its own vertices, inside it) just under it, and would be dropped; here it joins a neighbour
+      again, as `cleaning.merge_pieces` joins every thin piece;
+    - a part built of thin sheets (pybullet's random_urdfs/292: 42 convex slivers 0.1-1.3 mm thick
+      around a 0.9 × 6.3 × 1 cm stick, 0.29 cm³ of material) is a solid for contact only as its merged
+      hulls, which hold many times the material's volume: what cleaning removes is measured against
+      that solid for contact, not against the material.
+
+    Mass properties never come from the pieces, so neither changes the mass.
+    """
+    pieces, volume_for_contact = budgeted, material_volume + added
+    for _ in range(3):
+        pieces, more = cleaning.merge_pieces(pieces, len(pieces))
+        pieces = [piece_budget.budgeted_piece(vertices)[0] for vertices in pieces]
+        volume_for_contact += more
+        try:
+            clean, _ = cleaning.clean_pieces(pieces, volume_for_contact)
+        except cleaning.CleaningError:
+            continue
+        return clean
+    return None
