@@ -340,6 +340,43 @@ def test_a_mesh_that_would_tip_over_is_rested_on_a_stable_face(tmp_path):
         objects.object_from_mesh(tmp_path / "tilted.stl")
 
 
+def _standing_on_a_ridge(ridge: float) -> trimesh.Trimesh:
+    """A 3 × 3 × 9 cm post whose lowest centimetre narrows to a ridge `ridge` wide (m), along y."""
+    top = [[x, y, z] for x in (-0.015, 0.015) for y in (-0.015, 0.015) for z in (0.01, 0.09)]
+    bottom = [[x, y, 0.0] for x in (-ridge / 2, ridge / 2) for y in (-0.015, 0.015)]
+    return trimesh.convex.convex_hull(np.array(top + bottom))
+
+
+def test_a_balance_on_a_ridge_is_not_a_rest_and_a_standing_pencil_is():
+    """An object stands only where its centre of mass lies at least MIN_TIP_ANGLE inside its base:
+    on a 1 mm ridge a 9 cm post's centre lies 0.5 mm inside (0.6°), and the simulation's compliant
+    table tips it (pybullet's random_urdfs/372 fell so); on a 6 mm one (3.8°) it stands. A pencil
+    0.9 cm across and 18.5 cm tall (2.8°, the standing generator's slenderest) stands."""
+    from drake_grasp.objects.mesh_files import _rests_stably_upright
+
+    for ridge, stands in ((0.001, False), (0.006, True)):
+        post = _standing_on_a_ridge(ridge)
+        assert _rests_stably_upright(post.convex_hull, post.center_mass) is stands
+    pencil = trimesh.creation.cylinder(radius=0.0045, height=0.185, sections=24)
+    pencil.apply_translation([0.0, 0.0, 0.0925])
+    assert _rests_stably_upright(pencil.convex_hull, pencil.center_mass)
+
+
+def test_a_urdf_that_would_tip_over_is_rested_on_a_stable_face(tmp_path):
+    """A model file's frame is not always how its body rests: a URDF of the post on its 1 mm ridge is
+    laid on a stable face, saying so, as a mesh file is (it stood z up before, and fell as a trial began)."""
+    _standing_on_a_ridge(0.001).export(tmp_path / "post.obj")
+    (tmp_path / "post.urdf").write_text("""<robot name="post"><link name="post">
+  <inertial><origin xyz="0 0 0.048"/><mass value="0.1"/>
+    <inertia ixx="7e-5" ixy="0" ixz="0" iyy="7e-5" iyz="0" izz="1.5e-5"/></inertial>
+  <collision><geometry><mesh filename="post.obj"/></geometry></collision></link></robot>""")
+    with pytest.warns(objects.UnstablePoseWarning, match="post.urdf: with its z up the object would tip over"):
+        spec = objects.resolve_user_object(str(tmp_path / "post.urdf"))
+    assert spec.rest_height < 0.02  # lying on a long side: 1.5 cm, where it stood 4.8 cm
+    _standing_on_a_ridge(0.006).export(tmp_path / "post.obj")
+    assert objects.resolve_user_object(str(tmp_path / "post.urdf")).rest_height > 0.04
+
+
 def test_a_mesh_that_rests_stably_keeps_its_orientation(tmp_path, recwarn):
     trimesh.creation.cylinder(radius=0.03, height=0.2, sections=32).export(tmp_path / "can.stl")
     assert objects.object_from_mesh(tmp_path / "can.stl").R_TO.IsExactlyIdentity()

@@ -36,7 +36,7 @@ from drake_grasp.objects import (
 from drake_grasp.objects.pieces import IMPORT_VERSION, _decompose
 from drake_grasp.objects.spec import (
     COACD_THRESHOLD, CONVEXITY_TOLERANCE, DEFAULT_DENSITY, DEFAULT_MAX_PIECES, MAX_FACES, MeshNote,
-    ObjectError, ObjectSpec, PRIMITIVE_NAMES, STABLE_POSE_TOLERANCE, ShapePiece, UnstablePoseWarning,
+    MIN_TIP_ANGLE, ObjectError, ObjectSpec, PRIMITIVE_NAMES, STABLE_POSE_TOLERANCE, ShapePiece, UnstablePoseWarning,
     Y_UP_TO_Z_UP, YELLOW_PAPER_RGBA, cache_dir,
 )
 from drake_grasp.objects.mass_properties import _make_spec
@@ -226,9 +226,9 @@ def _lowest_resting_rotation(hull: trimesh.Trimesh, p_Ocm: np.ndarray) -> Rotati
 
 def _rests_stably_upright(hull: trimesh.Trimesh, p_Ocm: np.ndarray) -> bool:
     """Whether the object rests stably with its frame's z up: on a downward hull face (not an edge
-    or a point) over which its centre of mass lies, or so that no resting pose lowers its centre of
-    mass by more than STABLE_POSE_TOLERANCE of its size (a sphere, rolling off the vertex its
-    tessellation stands on)."""
+    or a point) over which its centre of mass lies, at least MIN_TIP_ANGLE inside its edges as seen
+    from the centre, or so that no resting pose lowers its centre of mass by more than
+    STABLE_POSE_TOLERANCE of its size (a sphere, rolling off the vertex its tessellation stands on)."""
     height = float(p_Ocm[2] - hull.vertices[:, 2].min())
     distances = np.einsum("ij,ij->i", hull.face_normals, hull.triangles[:, 0] - p_Ocm)
     if height - float(distances.min()) <= STABLE_POSE_TOLERANCE * float(np.max(hull.extents)):
@@ -245,7 +245,8 @@ def _rests_stably_upright(hull: trimesh.Trimesh, p_Ocm: np.ndarray) -> bool:
         equations = ConvexHull(polygon).equations  # a·x + b ≤ 0 inside
     except QhullError:  # collinear points: an edge
         return False
-    return bool(np.all(equations[:, :2] @ p_Ocm[:2] + equations[:, 2] <= 1e-9))
+    inside = height * math.tan(math.radians(MIN_TIP_ANGLE))  # how far inside its base the centre must lie
+    return bool(np.all(equations[:, :2] @ p_Ocm[:2] + equations[:, 2] <= -inside + 1e-9))
 
 
 def _user_solid(shells: list[trimesh.Trimesh], label: str, keep_largest: bool,

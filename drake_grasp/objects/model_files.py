@@ -26,19 +26,20 @@ import xml.etree.ElementTree as ElementTree
 from pathlib import Path
 
 import numpy as np
+import trimesh
 from pydrake.geometry import Box, Capsule, Convex, Cylinder, Ellipsoid, Mesh, Shape, Sphere
 from pydrake.math import RigidTransform, RollPitchYaw
 from pydrake.multibody.parsing import Parser
 
 from drake_grasp.objects.mesh_files import (
-    _load_checked_mesh, _model_name, _one_line, _scale_key,
+    _load_checked_mesh, _lowest_resting_rotation, _model_name, _one_line, _rests_stably_upright, _scale_key,
 )
 from drake_grasp.objects import packages, sizes
 from drake_grasp.objects.readable_models import drake_readable_model, quiet_unsupported_elements
 from drake_grasp.objects.pieces import _decompose
 from drake_grasp.objects.spec import (
-    DEFAULT_DENSITY, DEFAULT_MAX_PIECES, InertiaWarning, ObjectError, ObjectSpec, ShapePiece, YELLOW_PAPER_RGBA,
-    _cached_hull_obj,
+    DEFAULT_DENSITY, DEFAULT_MAX_PIECES, InertiaWarning, ObjectError, ObjectSpec, ShapePiece, UnstablePoseWarning,
+    YELLOW_PAPER_RGBA, _cached_hull_obj,
 )
 from drake_grasp.objects.mass_properties import (
     _make_spec, _mass_properties_sampled, _mass_properties_summed, _piece_points,
@@ -93,6 +94,21 @@ def _one_mesh_mass_properties(geometries, label: str) -> tuple[float, np.ndarray
     return float(solid.volume), R_BG @ np.asarray(solid.center_mass) + X_BG.translation(), R_BG @ unit_inertia @ R_BG.T
 
 
+def _resting_rpy(points_B: np.ndarray, p_BScm: np.ndarray, label: str) -> tuple[float, float, float]:
+    """How a model file's body rests on the table (roll, pitch, yaw of its frame, rad): with its z up
+    where it would stand so (`mesh_files._rests_stably_upright`), else on its most stable face, with
+    an UnstablePoseWarning, as a mesh file's or an MJCF body's. A model file's frame is often not how
+    it rests: 13 of 30 of pybullet's random_urdfs, z up, have their centre of mass outside their base
+    or stand on an edge or a point, and they fell over as each trial began, while the camera looked."""
+    hull = trimesh.convex.convex_hull(points_B)
+    if _rests_stably_upright(hull, p_BScm):
+        return (0.0, 0.0, 0.0)
+    warnings.warn(f"{label}: with its z up the object would tip over (it rests on an edge or a point, or its "
+                  "centre of mass is not over its base); resting it on its most stable face",
+                  UnstablePoseWarning, stacklevel=3)
+    return tuple(float(a) for a in RollPitchYaw(_lowest_resting_rotation(hull, p_BScm)).vector())
+
+
 def non_finite_number(path: Path) -> str | None:
     """Where an SDFormat or URDF file gives a number that is NaN or inf (a size, a mass, a pose),
     named by its element's path, e.g. "link 'l' inertial mass 'nan'"; None if every number is finite
@@ -137,7 +153,8 @@ def object_from_sdf(
     The file is parsed by Drake; its body's collision geometries become the pieces (non-convex
     meshes are decomposed like :func:`object_from_mesh`), its inertial gives mass, centre of mass
     and inertia (a missing or zero mass falls back to `mass` or density × volume). O is placed at
-    the body's centre of mass with the body frame's axes; the object rests with its z up.
+    the body's centre of mass with the body frame's axes; the object rests with its z up, or on its most
+    stable face if it would tip over (`_resting_rpy`).
 
     Limits: one model with one body and no joints (not welded, not articulated); the file's
     visuals, friction and contact properties are replaced by ours (pieces drawn in `rgba`, the
@@ -231,12 +248,14 @@ def object_from_sdf(
             lambda p: float(np.max(np.linalg.norm(points - p, axis=1))), inertia, density)
         mass_properties = (geometry[0], p_BScm, unit_inertia)
         mass = checked_mass if mass is None else mass
+    p_BScm = (mass_properties or _mass_properties_summed(tuple(pieces_B)))[1]  # as _make_spec places O
     return _make_spec(
         name or _model_name(plant.GetModelInstanceName(model)),
         pieces_B,
         mass,
         density=density,
         mass_properties=mass_properties,
+        rpy_TO=_resting_rpy(points, np.asarray(p_BScm, float), label),
         closest_primitive=closest_primitive,
         rgba=rgba,
         friction=friction,

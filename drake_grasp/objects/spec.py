@@ -86,6 +86,12 @@ PLAUSIBLE_EXTENTS = (0.01, 0.5)
 # above its lowest possible resting height is stable enough not to warn: a tessellated sphere
 # stands on a vertex, and rolls off it lowering its centre by a fraction of a millimetre.
 STABLE_POSE_TOLERANCE = 0.02
+# A face it rests on holds its centre of mass this far inside, as the angle it must tip through to fall
+# (deg): pybullet's random_urdfs/372, an H standing 9.1 cm tall on the ridges of its two legs, its
+# centre of mass 0.1 mm inside the sliver they make (0.1°), fell within 0.5 s of the first step on the
+# simulation's compliant table. Generated objects meant to stand keep theirs: a standing pencil 0.9 cm
+# across and 18.5 cm tall tips at 2.9°, a standing domino at 10-13°.
+MIN_TIP_ANGLE = 1.0
 # Upper bound on the convex pieces of a decomposed user mesh (CoACD's max_convex_hull).
 DEFAULT_MAX_PIECES = 16
 
