@@ -377,6 +377,21 @@ def test_a_urdf_that_would_tip_over_is_rested_on_a_stable_face(tmp_path):
     assert objects.resolve_user_object(str(tmp_path / "post.urdf")).rest_height > 0.04
 
 
+def test_a_urdf_can_on_a_scanned_bulge_keeps_its_z_up(tmp_path, recwarn):
+    """A scanned base is not one plane: YCB's tuna can stands on a bulge 4 mm below its rim. A URDF body
+    is laid down only where it clearly tips over, so such a can (here a bulge 3 mm below the rim)
+    stands as its file has it; the lowest-face test of a mesh file would turn it upside down."""
+    can = trimesh.creation.cylinder(radius=0.042, height=0.033, sections=32)
+    bulge = trimesh.creation.icosphere(radius=0.006).apply_translation([0.0, 0.0, -0.0165 + 0.003])
+    trimesh.util.concatenate([can, bulge]).convex_hull.export(tmp_path / "can.obj")
+    (tmp_path / "can.urdf").write_text("""<robot name="can"><link name="can">
+  <inertial><mass value="0.2"/><inertia ixx="1e-4" ixy="0" ixz="0" iyy="1e-4" iyz="0" izz="1.7e-4"/></inertial>
+  <collision><geometry><mesh filename="can.obj"/></geometry></collision></link></robot>""")
+    spec = objects.resolve_user_object(str(tmp_path / "can.urdf"))
+    assert spec.R_TO.IsExactlyIdentity()
+    assert not [w for w in recwarn if issubclass(w.category, objects.UnstablePoseWarning)]
+
+
 def test_a_mesh_that_rests_stably_keeps_its_orientation(tmp_path, recwarn):
     trimesh.creation.cylinder(radius=0.03, height=0.2, sections=32).export(tmp_path / "can.stl")
     assert objects.object_from_mesh(tmp_path / "can.stl").R_TO.IsExactlyIdentity()

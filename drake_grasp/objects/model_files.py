@@ -30,16 +30,17 @@ import trimesh
 from pydrake.geometry import Box, Capsule, Convex, Cylinder, Ellipsoid, Mesh, Shape, Sphere
 from pydrake.math import RigidTransform, RollPitchYaw
 from pydrake.multibody.parsing import Parser
+from scipy.spatial import ConvexHull, QhullError
 
 from drake_grasp.objects.mesh_files import (
-    _load_checked_mesh, _lowest_resting_rotation, _model_name, _one_line, _rests_stably_upright, _scale_key,
+    _load_checked_mesh, _lowest_resting_rotation, _model_name, _one_line, _scale_key,
 )
 from drake_grasp.objects import packages, sizes
 from drake_grasp.objects.readable_models import drake_readable_model, quiet_unsupported_elements
 from drake_grasp.objects.pieces import _decompose
 from drake_grasp.objects.spec import (
-    DEFAULT_DENSITY, DEFAULT_MAX_PIECES, InertiaWarning, ObjectError, ObjectSpec, ShapePiece, UnstablePoseWarning,
-    YELLOW_PAPER_RGBA, _cached_hull_obj,
+    DEFAULT_DENSITY, DEFAULT_MAX_PIECES, MIN_TIP_ANGLE, InertiaWarning, ObjectError, ObjectSpec, ShapePiece,
+    UnstablePoseWarning, YELLOW_PAPER_RGBA, _cached_hull_obj,
 )
 from drake_grasp.objects.mass_properties import (
     _make_spec, _mass_properties_sampled, _mass_properties_summed, _piece_points,
@@ -94,19 +95,45 @@ def _one_mesh_mass_properties(geometries, label: str) -> tuple[float, np.ndarray
     return float(solid.volume), R_BG @ np.asarray(solid.center_mass) + X_BG.translation(), R_BG @ unit_inertia @ R_BG.T
 
 
+# A model file's body is laid down only where it clearly tips over: its centre of mass MIN_TIP_ANGLE inside
+# no base made of the hull's vertices within this share of its height (at least BASE_FLOOR) of its
+# lowest point. A scanned base is not one plane: YCB's tuna can, as Gazebo ships it, stands on a 4 mm
+# bulge below its rim, and the lowest-face test of a mesh file (`mesh_files._rests_stably_upright`)
+# would turn it upside down; a can settles on its rim.
+BASE_SHARE = 0.1
+BASE_FLOOR = 0.005  # m
+
+
+def _clearly_tips_over(hull, p_BScm: np.ndarray) -> bool:
+    """Whether a body standing z up tips over: its centre of mass less than MIN_TIP_ANGLE inside the
+    base of the hull's vertices within BASE_SHARE of its height (at least BASE_FLOOR) of the lowest."""
+    vertices = np.asarray(hull.vertices, float)
+    z_min = float(vertices[:, 2].min())
+    height = float(p_BScm[2]) - z_min
+    base = np.unique(np.round(vertices[vertices[:, 2] <= z_min + max(BASE_FLOOR, BASE_SHARE * height)][:, :2], 6),
+                     axis=0)
+    if len(base) < 3:
+        return True
+    try:
+        equations = ConvexHull(base).equations  # a·x + b ≤ 0 inside
+    except QhullError:  # collinear: an edge
+        return True
+    inside = height * math.tan(math.radians(MIN_TIP_ANGLE))
+    return not bool(np.all(equations[:, :2] @ p_BScm[:2] + equations[:, 2] <= -inside + 1e-9))
+
+
 def _resting_rpy(points_B: np.ndarray, p_BScm: np.ndarray, label: str) -> tuple[float, float, float]:
-    """How a model file's body rests on the table (roll, pitch, yaw of its frame, rad): with its z up
-    where it would stand so (`mesh_files._rests_stably_upright`), else on its most stable face, with
-    an UnstablePoseWarning, as a mesh file's or an MJCF body's. A model file's frame is often not how
-    it rests: 24 of 30 of pybullet's random_urdfs, z up, have their centre of mass outside their base
-    or less than 1° inside it, or stand on an edge or a point; such a body falls as the trial begins,
-    while the camera looks (random_urdfs/372 within 0.5 s)."""
+    """How a model file's body rests on the table (roll, pitch, yaw of its frame, rad): with its z up,
+    unless it clearly tips over so (`_clearly_tips_over`); then on its most stable face, with an
+    UnstablePoseWarning, as a mesh file or an MJCF body that would tip over. A model file's frame is not
+    always how it rests: 17 of 30 of pybullet's random_urdfs, z up, have their centre of mass off their
+    base; such a body falls as the trial begins, while the camera looks, and the estimate merges it
+    standing and fallen."""
     hull = trimesh.convex.convex_hull(points_B)
-    if _rests_stably_upright(hull, p_BScm):
+    if not _clearly_tips_over(hull, p_BScm):
         return (0.0, 0.0, 0.0)
-    warnings.warn(f"{label}: with its z up the object would tip over (it rests on an edge or a point, or its "
-                  "centre of mass is not over its base); resting it on its most stable face",
-                  UnstablePoseWarning, stacklevel=3)
+    warnings.warn(f"{label}: with its z up the object would tip over (its centre of mass is not over its "
+                  "base); resting it on its most stable face", UnstablePoseWarning, stacklevel=3)
     return tuple(float(a) for a in RollPitchYaw(_lowest_resting_rotation(hull, p_BScm)).vector())
 
 
@@ -155,7 +182,7 @@ def object_from_sdf(
     meshes are decomposed like :func:`object_from_mesh`), its inertial gives mass, centre of mass
     and inertia (a missing or zero mass falls back to `mass` or density × volume). O is placed at
     the body's centre of mass with the body frame's axes; the object rests with its z up, or on its most
-    stable face if it would tip over (`_resting_rpy`).
+    stable face if it clearly tips over (`_resting_rpy`).
 
     Limits: one model with one body and no joints (not welded, not articulated); the file's
     visuals, friction and contact properties are replaced by ours (pieces drawn in `rgba`, the
