@@ -392,6 +392,17 @@ def test_a_urdf_can_on_a_scanned_bulge_keeps_its_z_up(tmp_path, recwarn):
     assert not [w for w in recwarn if issubclass(w.category, objects.UnstablePoseWarning)]
 
 
+def test_a_urdf_whose_centre_of_mass_lies_outside_its_geometry_keeps_its_z_up(tmp_path):
+    """OCRTOC's plastic lemon gives its centre of mass as the origin, outside its mesh (here beside it):
+    how it rests cannot be told from that, so it stands as its file has it (0.39.0's first rest rule
+    stopped on it with "attempt to get argmax of an empty sequence")."""
+    trimesh.creation.icosphere(radius=0.03).apply_translation([0.04, 0.0, 0.03]).export(tmp_path / "lemon.obj")
+    (tmp_path / "lemon.urdf").write_text("""<robot name="lemon"><link name="lemon">
+  <inertial><mass value="0.1"/><inertia ixx="4e-5" ixy="0" ixz="0" iyy="4e-5" iyz="0" izz="4e-5"/></inertial>
+  <collision><geometry><mesh filename="lemon.obj"/></geometry></collision></link></robot>""")
+    assert objects.resolve_user_object(str(tmp_path / "lemon.urdf")).R_TO.IsExactlyIdentity()
+
+
 def test_a_mesh_that_rests_stably_keeps_its_orientation(tmp_path, recwarn):
     trimesh.creation.cylinder(radius=0.03, height=0.2, sections=32).export(tmp_path / "can.stl")
     assert objects.object_from_mesh(tmp_path / "can.stl").R_TO.IsExactlyIdentity()

@@ -130,7 +130,10 @@ def _resting_rpy(points_B: np.ndarray, p_BScm: np.ndarray, label: str) -> tuple[
     base; such a body falls as the trial begins, while the camera looks, and the estimate merges it
     standing and fallen."""
     hull = trimesh.convex.convex_hull(points_B)
-    if not _clearly_tips_over(hull, p_BScm):
+    outside = np.einsum("ij,ij->i", hull.face_normals, hull.triangles[:, 0] - p_BScm).min() < 0.0
+    if outside or not _clearly_tips_over(hull, p_BScm):
+        # A centre of mass outside the collision geometry is a placeholder (OCRTOC's plastic lemon: the
+        # origin, below the mesh's hull), and how such a body rests cannot be told: z up, as the file has it.
         return (0.0, 0.0, 0.0)
     warnings.warn(f"{label}: with its z up the object would tip over (its centre of mass is not over its "
                   "base); resting it on its most stable face", UnstablePoseWarning, stacklevel=3)
