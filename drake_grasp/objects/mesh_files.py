@@ -241,8 +241,14 @@ def _rests_stably_upright(hull: trimesh.Trimesh, p_Ocm: np.ndarray) -> bool:
     polygon = np.unique(np.round(hull.triangles[bottom].reshape(-1, 3)[:, :2], 9), axis=0)
     if len(polygon) < 3:
         return False  # a point or an edge
+    return _centre_over_base(polygon, p_Ocm, height)
+
+
+def _centre_over_base(base_xy: np.ndarray, p_Ocm: np.ndarray, height: float) -> bool:
+    """Whether the centre of mass, `height` (m) above the base, lies over the base's polygon (the hull of
+    `base_xy`) at least MIN_TIP_ANGLE inside its edges as seen from the centre; False for an edge."""
     try:
-        equations = ConvexHull(polygon).equations  # a·x + b ≤ 0 inside
+        equations = ConvexHull(base_xy).equations  # a·x + b ≤ 0 inside
     except QhullError:  # collinear points: an edge
         return False
     inside = height * math.tan(math.radians(MIN_TIP_ANGLE))  # how far inside its base the centre must lie

@@ -30,16 +30,15 @@ import trimesh
 from pydrake.geometry import Box, Capsule, Convex, Cylinder, Ellipsoid, Mesh, Shape, Sphere
 from pydrake.math import RigidTransform, RollPitchYaw
 from pydrake.multibody.parsing import Parser
-from scipy.spatial import ConvexHull, QhullError
 
 from drake_grasp.objects.mesh_files import (
-    _load_checked_mesh, _lowest_resting_rotation, _model_name, _one_line, _scale_key,
+    _centre_over_base, _load_checked_mesh, _lowest_resting_rotation, _model_name, _one_line, _scale_key,
 )
 from drake_grasp.objects import packages, sizes
 from drake_grasp.objects.readable_models import drake_readable_model, quiet_unsupported_elements
 from drake_grasp.objects.pieces import _decompose
 from drake_grasp.objects.spec import (
-    DEFAULT_DENSITY, DEFAULT_MAX_PIECES, MIN_TIP_ANGLE, InertiaWarning, ObjectError, ObjectSpec, ShapePiece,
+    DEFAULT_DENSITY, DEFAULT_MAX_PIECES, InertiaWarning, ObjectError, ObjectSpec, ShapePiece,
     UnstablePoseWarning, YELLOW_PAPER_RGBA, _cached_hull_obj,
 )
 from drake_grasp.objects.mass_properties import (
@@ -112,14 +111,7 @@ def _clearly_tips_over(hull, p_BScm: np.ndarray) -> bool:
     height = float(p_BScm[2]) - z_min
     base = np.unique(np.round(vertices[vertices[:, 2] <= z_min + max(BASE_FLOOR, BASE_SHARE * height)][:, :2], 6),
                      axis=0)
-    if len(base) < 3:
-        return True
-    try:
-        equations = ConvexHull(base).equations  # a·x + b ≤ 0 inside
-    except QhullError:  # collinear: an edge
-        return True
-    inside = height * math.tan(math.radians(MIN_TIP_ANGLE))
-    return not bool(np.all(equations[:, :2] @ p_BScm[:2] + equations[:, 2] <= -inside + 1e-9))
+    return len(base) < 3 or not _centre_over_base(base, p_BScm, height)
 
 
 def _resting_rpy(points_B: np.ndarray, p_BScm: np.ndarray, label: str) -> tuple[float, float, float]:
@@ -133,7 +125,7 @@ def _resting_rpy(points_B: np.ndarray, p_BScm: np.ndarray, label: str) -> tuple[
     outside = np.einsum("ij,ij->i", hull.face_normals, hull.triangles[:, 0] - p_BScm).min() < 0.0
     if outside or not _clearly_tips_over(hull, p_BScm):
         # A centre of mass outside the collision geometry is a placeholder (OCRTOC's plastic lemon: the
-        # origin, below the mesh's hull), and how such a body rests cannot be told: z up, as the file has it.
+        # origin, outside its mesh), and how such a body rests cannot be told: z up, as the file has it.
         return (0.0, 0.0, 0.0)
     warnings.warn(f"{label}: with its z up the object would tip over (its centre of mass is not over its "
                   "base); resting it on its most stable face", UnstablePoseWarning, stacklevel=3)
