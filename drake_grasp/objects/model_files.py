@@ -34,11 +34,11 @@ from pydrake.multibody.parsing import Parser
 from drake_grasp.objects.mesh_files import (
     _centre_over_base, _load_checked_mesh, _lowest_resting_rotation, _model_name, _one_line, _scale_key,
 )
-from drake_grasp.objects import packages, sizes
+from drake_grasp.objects import packages, settling, sizes
 from drake_grasp.objects.readable_models import drake_readable_model, quiet_unsupported_elements
 from drake_grasp.objects.pieces import _decompose
 from drake_grasp.objects.spec import (
-    DEFAULT_DENSITY, DEFAULT_MAX_PIECES, InertiaWarning, ObjectError, ObjectSpec, ShapePiece,
+    DEFAULT_DENSITY, DEFAULT_MAX_PIECES, MIN_TIP_ANGLE, InertiaWarning, ObjectError, ObjectSpec, ShapePiece,
     UnstablePoseWarning, YELLOW_PAPER_RGBA, _cached_hull_obj,
 )
 from drake_grasp.objects.mass_properties import (
@@ -114,22 +114,68 @@ def _clearly_tips_over(hull, p_BScm: np.ndarray) -> bool:
     return len(base) < 3 or not _centre_over_base(base, p_BScm, height)
 
 
-def _resting_rpy(points_B: np.ndarray, p_BScm: np.ndarray, label: str) -> tuple[float, float, float]:
+def _resting_rpy(points_B: np.ndarray, p_BScm: np.ndarray, label: str) -> tuple[float, float, float] | None:
     """How a model file's body rests on the table (roll, pitch, yaw of its frame, rad): with its z up,
     unless it clearly tips over so (`_clearly_tips_over`); then on its most stable face, with an
     UnstablePoseWarning, as a mesh file or an MJCF body that would tip over. A model file's frame is not
     always how it rests: 17 of 30 of pybullet's random_urdfs, z up, have their centre of mass off their
     base; such a body falls as the trial begins, while the camera looks, and the estimate merges it
-    standing and fallen."""
+    standing and fallen. None: z up is not clearly a rest either way, and the simulator must say
+    (`_settled_rpy`)."""
     hull = trimesh.convex.convex_hull(points_B)
     outside = np.einsum("ij,ij->i", hull.face_normals, hull.triangles[:, 0] - p_BScm).min() < 0.0
-    if outside or not _clearly_tips_over(hull, p_BScm):
+    if outside:
         # A centre of mass outside the collision geometry is a placeholder (OCRTOC's plastic lemon: the
         # origin, outside its mesh), and how such a body rests cannot be told: z up, as the file has it.
         return (0.0, 0.0, 0.0)
+    if not _clearly_tips_over(hull, p_BScm):
+        return (0.0, 0.0, 0.0) if settling.stays(np.asarray(hull.vertices), p_BScm) else None
     warnings.warn(f"{label}: with its z up the object would tip over (its centre of mass is not over its "
                   "base); resting it on its most stable face", UnstablePoseWarning, stacklevel=3)
+    return _most_stable_rpy(hull, p_BScm)
+
+
+def _most_stable_rpy(hull, p_BScm: np.ndarray) -> tuple[float, float, float]:
     return tuple(float(a) for a in RollPitchYaw(_lowest_resting_rotation(hull, p_BScm)).vector())
+
+
+def _settled_rpy(spec: ObjectSpec, points_O: np.ndarray, label: str) -> tuple[float, float, float]:
+    """How a body that z up neither clearly stands nor clearly tips over comes to rest: set down z up on
+    the station's table in the simulator (`settling.settle_in_simulator`). A base of the vertices near
+    the lowest one, the test above, takes a rounded bottom for a flat one: pybullet's random object 306,
+    a 9 cm lump, stood on such a base in 0.39.0 and rolled 57° within 0.75 s of the trial's start, while
+    the camera looked; Gazebo's YCB sponge, marker and fork stand on end in their files and fell flat.
+    The simulator's rest is taken as it is (a scanned can rests on its compliant bulge, where a rigid
+    roll would tip it onto its rim). A body still moving after SETTLE_TIME is rolled quasi-statically
+    from where it got to (`settling.roll_to_rest`), and rests on the face the roll ends on if its centre
+    of mass stands MIN_TIP_ANGLE inside its edges, else on its most stable face. A rest within ROCK_DEG
+    of z up keeps z up."""
+    R_TO, rested = settling.settle_in_simulator(spec)
+    down = R_TO.inverse() @ np.array([0.0, 0.0, -1.0])
+    if not rested:
+        hull = trimesh.convex.convex_hull(points_O)
+        rest = settling.roll_to_rest(np.asarray(hull.vertices), np.zeros(3), down)
+        if rest.margin_deg < MIN_TIP_ANGLE:
+            warnings.warn(f"{label}: with its z up the object would tip over (it settles on no base); resting "
+                          "it on its most stable face", UnstablePoseWarning, stacklevel=3)
+            return _most_stable_rpy(hull, np.zeros(3))
+        down = rest.down
+    turned = math.degrees(math.acos(float(np.clip(-down[2], -1.0, 1.0))))
+    if turned < ROCK_DEG:
+        return (0.0, 0.0, 0.0)
+    if turned >= TIPS_DEG:
+        warnings.warn(f"{label}: with its z up the object would tip over ({turned:.0f}° in the simulator); "
+                      "resting it as it settles", UnstablePoseWarning, stacklevel=3)
+    return tuple(float(a) for a in RollPitchYaw(settling.resting_rotation(down)).vector())
+
+
+# A body that settles this far (deg) from z up is said to tip over (an UnstablePoseWarning). One that
+# settles less than ROCK_DEG from it keeps z up, as the file has it: a scanned box or can rocks that
+# much on its uneven base in the trial's first steps (0.5-1.6° for YCB's cracker box, tuna can and
+# pudding box as OCRTOC and Gazebo ship them), before the camera's first look, and a rest turned by a
+# degree would change every trial of them for nothing.
+TIPS_DEG = 10.0
+ROCK_DEG = 3.0
 
 
 def non_finite_number(path: Path) -> str | None:
@@ -272,18 +318,26 @@ def object_from_sdf(
         mass_properties = (geometry[0], p_BScm, unit_inertia)
         mass = checked_mass if mass is None else mass
     p_BScm = (mass_properties or _mass_properties_summed(tuple(pieces_B)))[1]  # as _make_spec places O
-    return _make_spec(
-        name or _model_name(plant.GetModelInstanceName(model)),
-        pieces_B,
-        mass,
-        density=density,
-        mass_properties=mass_properties,
-        rpy_TO=_resting_rpy(points, np.asarray(p_BScm, float), label),
-        closest_primitive=closest_primitive,
-        rgba=rgba,
-        friction=friction,
-        source=str(path.resolve()),
-    )
+    rpy_TO = _resting_rpy(points, np.asarray(p_BScm, float), label)
+
+    def spec_resting(rpy):
+        return _make_spec(
+            name or _model_name(plant.GetModelInstanceName(model)),
+            pieces_B,
+            mass,
+            density=density,
+            mass_properties=mass_properties,
+            rpy_TO=rpy,
+            closest_primitive=closest_primitive,
+            rgba=rgba,
+            friction=friction,
+            source=str(path.resolve()),
+        )
+
+    if rpy_TO is not None:
+        return spec_resting(rpy_TO)
+    standing = spec_resting((0.0, 0.0, 0.0))
+    return spec_resting(_settled_rpy(standing, points - np.asarray(p_BScm, float), label))
 
 
 def _missing_file_problem(error_text: str) -> str | None:
