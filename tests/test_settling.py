@@ -93,3 +93,15 @@ def test_a_urdf_on_a_flat_base_stays_without_the_simulator(tmp_path, monkeypatch
     spec = objects.resolve_user_object(_post_on_a_blunt_point(tmp_path, 0.0))
     assert spec.R_TO.IsExactlyIdentity()
     assert not [w for w in recwarn if issubclass(w.category, objects.UnstablePoseWarning)]
+
+
+def test_a_body_the_simulator_cannot_settle_stands_as_its_file_has_it(tmp_path, monkeypatch):
+    from drake_grasp.objects import settling
+
+    def diverge(*args, **kwargs):
+        raise RuntimeError("the discrete solver failed to converge\nat time 0.005")
+
+    monkeypatch.setattr(settling, "settle_in_simulator", diverge)
+    with pytest.warns(objects.UnstablePoseWarning, match="could not settle it in the simulator .*converge"):
+        spec = objects.resolve_user_object(_post_on_a_blunt_point(tmp_path, 0.004))
+    assert spec.R_TO.IsExactlyIdentity()

@@ -151,7 +151,12 @@ def _settled_rpy(spec: ObjectSpec, points_O: np.ndarray, label: str) -> tuple[fl
     of mass stands MIN_TIP_ANGLE inside its edges, else on its most stable face. A rest within ROCK_DEG
     of z up keeps z up; one that rolled on a round side (its centre of mass no lower) rests as it
     rolled, without the warning."""
-    R_TO, rested = settling.settle_in_simulator(spec)
+    try:
+        R_TO, rested = settling.settle_in_simulator(spec)
+    except RuntimeError as error:  # the simulator gave up (a body it cannot step): as the file has it
+        warnings.warn(f"{label}: could not settle it in the simulator ({_one_line(str(error))}); it stands "
+                      "z up as the file has it", UnstablePoseWarning, stacklevel=3)
+        return (0.0, 0.0, 0.0)
     down = R_TO.inverse() @ np.array([0.0, 0.0, -1.0])
     if not rested:
         hull = trimesh.convex.convex_hull(points_O)
