@@ -19,6 +19,11 @@ where a body shaken long enough ends, not where one set down ends: a scanned can
 its rim is on the table, not upside down. And a base made of the vertices near the lowest one (model
 files' test until 0.39.0) takes a rounded bottom for a flat one: pybullet's random object 306, a 9 cm
 lump, stood on such a base and rolled 57° within 0.75 s of the trial's start, while the camera looked.
+
+The roll is what the loader uses to tell a body that clearly stands (`stays`: it turns under a degree,
+onto a broad base). Where it does not, the station's own simulator says where the body comes to rest
+(`settle_in_simulator`): the roll knows no momentum and no compliant contact, and the simulator is what
+the trial will run (docs/design.md §4.3).
 """
 
 from __future__ import annotations
@@ -27,7 +32,12 @@ import dataclasses
 import math
 
 import numpy as np
-from pydrake.math import RotationMatrix
+from pydrake.common.eigen_geometry import AngleAxis
+from pydrake.math import RigidTransform, RotationMatrix
+from pydrake.multibody.parsing import Parser
+from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlantConfig
+from pydrake.systems.analysis import Simulator
+from pydrake.systems.framework import DiagramBuilder
 from scipy.optimize import nnls
 from scipy.spatial import ConvexHull, QhullError
 
@@ -128,7 +138,6 @@ def resting_rotation(down: np.ndarray) -> RotationMatrix:
     sin, cos = float(np.linalg.norm(axis)), float(d @ target)
     if sin < 1e-12:
         return RotationMatrix() if cos > 0.0 else RotationMatrix.MakeXRotation(math.pi)
-    from pydrake.common.eigen_geometry import AngleAxis
     return RotationMatrix(AngleAxis(math.atan2(sin, cos), axis / sin))
 
 
@@ -160,16 +169,12 @@ def settle_in_simulator(spec, contact=None) -> tuple[RotationMatrix, bool]:
     850 rolls 5° quasi-statically and stops on a base 1° wide, and in the simulator it falls 46°; 370,
     a 12 cm fin, stands on a base 5° wide and falls flat. The simulator settles them as a trial would,
     before the camera looks."""
-    from pydrake.math import RigidTransform
-    from pydrake.multibody.parsing import Parser
-    from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlantConfig
-    from pydrake.systems.analysis import Simulator
-    from pydrake.systems.framework import DiagramBuilder
-
-    from drake_grasp.objects.drake_model import AddObject
+    from drake_grasp.objects.drake_model import AddObject  # (objects/__init__ imports this module)
     from drake_grasp.paths import RegisterPackage
 
     builder = DiagramBuilder()
+    # The default scenario's plant (diagrams/station.scenarios.yaml); the station module builds on the
+    # objects package, so its scenario is not read here.
     config = MultibodyPlantConfig(time_step=0.005, contact_model="hydroelastic_with_fallback",
                                   discrete_contact_approximation="lagged")
     plant, _ = AddMultibodyPlant(config, builder)
