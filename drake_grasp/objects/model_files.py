@@ -139,6 +139,18 @@ def _most_stable_rpy(hull, p_BScm: np.ndarray) -> tuple[float, float, float]:
     return tuple(float(a) for a in RollPitchYaw(_lowest_resting_rotation(hull, p_BScm)).vector())
 
 
+# A body that settles this far (deg) from z up is said to tip over (an UnstablePoseWarning). One that
+# settles less than ROCK_DEG from it keeps z up, as the file has it: a scanned box or can rocks that
+# much on its uneven base in the trial's first steps (0.5-1.6° for YCB's cracker box, tuna can and
+# pudding box as OCRTOC and Gazebo ship them), before the camera's first look, and a rest turned by a
+# degree would change every trial of them for nothing.
+TIPS_DEG = 10.0
+ROCK_DEG = 3.0
+# A body that turned TIPS_DEG or more without its centre of mass falling this much (m) rolled on a round
+# side (a can lying on its side rolls 15° at 1.5 kg): it rests as it rolled, without the warning.
+TIP_DROP = 0.001
+
+
 def _settled_rpy(spec: ObjectSpec, points_O: np.ndarray, label: str) -> tuple[float, float, float]:
     """How a body that z up neither clearly stands nor clearly tips over comes to rest: set down z up on
     the station's table in the simulator (`settling.settle_in_simulator`). A base of the vertices near
@@ -174,18 +186,6 @@ def _settled_rpy(spec: ObjectSpec, points_O: np.ndarray, label: str) -> tuple[fl
         warnings.warn(f"{label}: with its z up the object would tip over ({turned:.0f}° in the simulator); "
                       "resting it as it settles", UnstablePoseWarning, stacklevel=3)
     return tuple(float(a) for a in RollPitchYaw(settling.resting_rotation(down)).vector())
-
-
-# A body that settles this far (deg) from z up is said to tip over (an UnstablePoseWarning). One that
-# settles less than ROCK_DEG from it keeps z up, as the file has it: a scanned box or can rocks that
-# much on its uneven base in the trial's first steps (0.5-1.6° for YCB's cracker box, tuna can and
-# pudding box as OCRTOC and Gazebo ship them), before the camera's first look, and a rest turned by a
-# degree would change every trial of them for nothing.
-TIPS_DEG = 10.0
-ROCK_DEG = 3.0
-# A body that turned TIPS_DEG or more without its centre of mass falling this much (m) rolled on a round
-# side (a can lying on its side rolls 15° at 1.5 kg): it rests as it rolled, without the warning.
-TIP_DROP = 0.001
 
 
 def non_finite_number(path: Path) -> str | None:
