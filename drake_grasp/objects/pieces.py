@@ -26,7 +26,7 @@ from drake_grasp.objects.spec import (
 # Bump when loading a file gives other pieces or mass properties for the same bytes: it is part of
 # the decompositions' cache key and of a mesh file's fingerprint (records are computed anew).
 IMPORT_VERSION = 9  # 9: seams left open at T-junctions are split (repair.split_t_junctions)
-CLEANING_VERSION = 2  # part of the cache key of decompositions: bump when cleaning changes
+CLEANING_VERSION = 3  # part of the cache key of decompositions: bump when cleaning changes (3: Drake's own fans)
 
 
 # CoACD runs in a child process: on some meshes its C++ code aborts the whole process ("terminate
