@@ -105,3 +105,29 @@ def test_a_body_the_simulator_cannot_settle_stands_as_its_file_has_it(tmp_path, 
     with pytest.warns(objects.UnstablePoseWarning, match="could not settle it in the simulator .*converge"):
         spec = objects.resolve_user_object(_post_on_a_blunt_point(tmp_path, 0.004))
     assert spec.R_TO.IsExactlyIdentity()
+
+
+def _can_on_a_bulge(bulge: float) -> trimesh.Trimesh:
+    """A can 6.6 cm across and 10 cm tall whose bottom bulges `bulge` (m) below its rim at the centre,
+    as YCB's scanned cans stand."""
+    angles = np.linspace(0.0, 2.0 * math.pi, 48, endpoint=False)
+    rim = [[0.033 * math.cos(a), 0.033 * math.sin(a), z] for a in angles for z in (0.0, 0.1)]
+    return trimesh.convex.convex_hull(np.array(rim + [[0.0, 0.0, -bulge]]))
+
+
+def test_a_mesh_can_on_a_bulge_stands_as_it_settles_and_a_steep_one_lies_down(tmp_path):
+    # The lowest-face test sees a point under the can; the simulator, a can that rocks onto its rim.
+    from drake_grasp.objects.mesh_files import _rests_stably_upright
+
+    for bulge, stands in ((0.001, True), (0.012, False)):
+        can = _can_on_a_bulge(bulge)
+        assert not _rests_stably_upright(can.convex_hull, can.center_mass)
+        path = tmp_path / f"can_{bulge}.obj"
+        can.export(path)
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            spec = objects.object_from_mesh(path)
+        tipped = [w for w in caught if issubclass(w.category, objects.UnstablePoseWarning)]
+        assert (not tipped) is stands
+        z_up = abs(float((spec.R_TO.matrix() @ np.array([0.0, 0.0, 1.0]))[2]))
+        assert (z_up > 0.999) is stands

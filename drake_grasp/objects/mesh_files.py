@@ -34,6 +34,7 @@ from drake_grasp.objects import (
     vtk_polydata,
 )
 from drake_grasp.objects.pieces import IMPORT_VERSION, _decompose
+from drake_grasp.objects.settling import stays_up_in_simulator
 from drake_grasp.objects.spec import (
     COACD_THRESHOLD, CONVEXITY_TOLERANCE, DEFAULT_DENSITY, DEFAULT_MAX_PIECES, MAX_FACES, MeshNote,
     MIN_TIP_ANGLE, ObjectError, ObjectSpec, PRIMITIVE_NAMES, STABLE_POSE_TOLERANCE, ShapePiece, UnstablePoseWarning,
@@ -255,6 +256,27 @@ def _centre_over_base(base_xy: np.ndarray, p_Ocm: np.ndarray, height: float) -> 
     return bool(np.all(equations[:, :2] @ p_Ocm[:2] + equations[:, 2] <= -inside + 1e-9))
 
 
+# A body is laid down without asking the simulator only where it clearly tips over: its centre of mass
+# MIN_TIP_ANGLE inside no base made of the hull's vertices within this share of its height (at least
+# BASE_FLOOR) of its lowest point. A scanned base is not one plane: YCB's tuna can, as Gazebo ships it,
+# stands on a 4 mm bulge below its rim, and the lowest-face test (`_rests_stably_upright`) would turn it
+# upside down; a can settles on its rim. Nor is a body that balances on a point a rest, though a
+# symmetric one balances there in the simulator too.
+BASE_SHARE = 0.1
+BASE_FLOOR = 0.005  # m
+
+
+def clearly_tips_over(hull, p_BScm: np.ndarray) -> bool:
+    """Whether a body standing z up tips over: its centre of mass less than MIN_TIP_ANGLE inside the
+    base of the hull's vertices within BASE_SHARE of its height (at least BASE_FLOOR) of the lowest."""
+    vertices = np.asarray(hull.vertices, float)
+    z_min = float(vertices[:, 2].min())
+    height = float(p_BScm[2]) - z_min
+    base = np.unique(np.round(vertices[vertices[:, 2] <= z_min + max(BASE_FLOOR, BASE_SHARE * height)][:, :2], 6),
+                     axis=0)
+    return len(base) < 3 or not _centre_over_base(base, p_BScm, height)
+
+
 def _user_solid(shells: list[trimesh.Trimesh], label: str, keep_largest: bool,
                 join_gap: float | None = None, one_body: bool = False) -> trimesh.Trimesh:
     """The object closed shells make: those within the join gap of each other are one rigid object
@@ -451,26 +473,26 @@ def object_from_triangles(
     unit_inertia = np.asarray(mesh.moment_inertia, float) / float(mesh.mass)
     contact_mesh = _simplified(mesh, label)
     piece_paths = _decompose(contact_mesh, f"{_model_name(stem)}-{key}", max_pieces, label)
-    rpy_TO = (0.0, 0.0, 0.0)
+    pieces = [ShapePiece("convex", (), mesh_path=p) for p in piece_paths]
+    if inertia is not None:
+        mass, centroid, unit_inertia = inertia(volume, centroid, unit_inertia, mass)
+
+    def spec(rpy_TO: tuple[float, float, float]) -> ObjectSpec:
+        return _make_spec(name or _model_name(stem), pieces, mass, density=density,
+                          mass_properties=(volume, centroid, unit_inertia), rpy_TO=rpy_TO,
+                          closest_primitive=closest_primitive, rgba=rgba, friction=friction, source=source)
+
+    standing = spec((0.0, 0.0, 0.0))
     if stable_pose is None and not _rests_stably_upright(contact_mesh.convex_hull, centroid):
+        # A scanned base is not one plane (YCB's cans and bottles stand on a bulge or a rim): where the
+        # lowest-face test sees an edge or a point but a base of vertices near it carries the body, the
+        # station's simulator says whether it stands.
+        if not clearly_tips_over(contact_mesh.convex_hull, centroid) and stays_up_in_simulator(standing):
+            return standing
         warnings.warn(f"{label}: with its z up the object would tip over (it rests on an edge or a point, "
                       "or its centre of mass is not over its base); resting it on its most stable face",
                       UnstablePoseWarning, stacklevel=2)
         stable_pose = True
-    if stable_pose:
-        rpy_TO = tuple(RollPitchYaw(_lowest_resting_rotation(contact_mesh.convex_hull, centroid)).vector())
-    pieces = [ShapePiece("convex", (), mesh_path=p) for p in piece_paths]
-    if inertia is not None:
-        mass, centroid, unit_inertia = inertia(volume, centroid, unit_inertia, mass)
-    return _make_spec(
-        name or _model_name(stem),
-        pieces,
-        mass,
-        density=density,
-        mass_properties=(volume, centroid, unit_inertia),
-        rpy_TO=rpy_TO,
-        closest_primitive=closest_primitive,
-        rgba=rgba,
-        friction=friction,
-        source=source,
-    )
+    if not stable_pose:
+        return standing
+    return spec(tuple(RollPitchYaw(_lowest_resting_rotation(contact_mesh.convex_hull, centroid)).vector()))

@@ -33,6 +33,7 @@ from pydrake.multibody.parsing import Parser
 
 from drake_grasp.objects.mesh_files import (
     _centre_over_base, _load_checked_mesh, _lowest_resting_rotation, _model_name, _one_line, _scale_key,
+    clearly_tips_over,
 )
 from drake_grasp.objects import packages, settling, sizes
 from drake_grasp.objects.readable_models import drake_readable_model, quiet_unsupported_elements
@@ -94,29 +95,9 @@ def _one_mesh_mass_properties(geometries, label: str) -> tuple[float, np.ndarray
     return float(solid.volume), R_BG @ np.asarray(solid.center_mass) + X_BG.translation(), R_BG @ unit_inertia @ R_BG.T
 
 
-# A model file's body is laid down only where it clearly tips over: its centre of mass MIN_TIP_ANGLE inside
-# no base made of the hull's vertices within this share of its height (at least BASE_FLOOR) of its
-# lowest point. A scanned base is not one plane: YCB's tuna can, as Gazebo ships it, stands on a 4 mm
-# bulge below its rim, and the lowest-face test of a mesh file (`mesh_files._rests_stably_upright`)
-# would turn it upside down; a can settles on its rim.
-BASE_SHARE = 0.1
-BASE_FLOOR = 0.005  # m
-
-
-def _clearly_tips_over(hull, p_BScm: np.ndarray) -> bool:
-    """Whether a body standing z up tips over: its centre of mass less than MIN_TIP_ANGLE inside the
-    base of the hull's vertices within BASE_SHARE of its height (at least BASE_FLOOR) of the lowest."""
-    vertices = np.asarray(hull.vertices, float)
-    z_min = float(vertices[:, 2].min())
-    height = float(p_BScm[2]) - z_min
-    base = np.unique(np.round(vertices[vertices[:, 2] <= z_min + max(BASE_FLOOR, BASE_SHARE * height)][:, :2], 6),
-                     axis=0)
-    return len(base) < 3 or not _centre_over_base(base, p_BScm, height)
-
-
 def _resting_rpy(points_B: np.ndarray, p_BScm: np.ndarray, label: str) -> tuple[float, float, float] | None:
     """How a model file's body rests on the table (roll, pitch, yaw of its frame, rad): with its z up,
-    unless it clearly tips over so (`_clearly_tips_over`); then on its most stable face, with an
+    unless it clearly tips over so (`mesh_files.clearly_tips_over`); then on its most stable face, with an
     UnstablePoseWarning, as a mesh file or an MJCF body that would tip over. A model file's frame is not
     always how it rests: 17 of 30 of pybullet's random_urdfs, z up, have their centre of mass off their
     base; such a body falls as the trial begins, while the camera looks, and the estimate merges it
@@ -128,7 +109,7 @@ def _resting_rpy(points_B: np.ndarray, p_BScm: np.ndarray, label: str) -> tuple[
         # A centre of mass outside the collision geometry is a placeholder (OCRTOC's plastic lemon: the
         # origin, outside its mesh), and how such a body rests cannot be told: z up, as the file has it.
         return (0.0, 0.0, 0.0)
-    if not _clearly_tips_over(hull, p_BScm):
+    if not clearly_tips_over(hull, p_BScm):
         return (0.0, 0.0, 0.0) if settling.stays(np.asarray(hull.vertices), p_BScm) else None
     warnings.warn(f"{label}: with its z up the object would tip over (its centre of mass is not over its "
                   "base); resting it on its most stable face", UnstablePoseWarning, stacklevel=3)
@@ -140,12 +121,9 @@ def _most_stable_rpy(hull, p_BScm: np.ndarray) -> tuple[float, float, float]:
 
 
 # A body that settles this far (deg) from z up is said to tip over (an UnstablePoseWarning). One that
-# settles less than ROCK_DEG from it keeps z up, as the file has it: a scanned box or can rocks that
-# much on its uneven base in the trial's first steps (0.5-1.6° for YCB's cracker box, tuna can and
-# pudding box as OCRTOC and Gazebo ship them), before the camera's first look, and a rest turned by a
-# degree would change every trial of them for nothing.
+# settles less than `settling.ROCK_DEG` from it keeps z up, as the file has it.
 TIPS_DEG = 10.0
-ROCK_DEG = 3.0
+ROCK_DEG = settling.ROCK_DEG
 # A body that turned TIPS_DEG or more without its centre of mass falling this much (m) rolled on a round
 # side (a can lying on its side rolls 15° at 1.5 kg): it rests as it rolled, without the warning.
 TIP_DROP = 0.001
