@@ -41,12 +41,12 @@ from pydrake.systems.framework import DiagramBuilder
 from scipy.optimize import nnls
 from scipy.spatial import ConvexHull, QhullError
 
-# The roll's step (deg) and the steps it may take (400° of turning).
 # A body that settles less than this (deg) from z up keeps z up, as the file has it: a scanned box or
 # can rocks that much on its uneven base in the trial's first steps (0.5-1.6° for YCB's cracker box,
 # tuna can and pudding box as OCRTOC and Gazebo ship them), before the camera's first look, and a rest
 # turned by a degree would change every trial of them for nothing.
 ROCK_DEG = 3.0
+# The roll's step (deg) and the steps it may take (400° of turning).
 STEP_DEG = 0.05
 MAX_STEPS = 8000
 # Vertices within this angle of the supporting plane, seen from the hull's size, are its base (deg): a
