@@ -41,8 +41,8 @@ MIN_EDGE = 0.0003  # m: vertices of a piece closer than this are merged
 MIN_ALTITUDE = 0.0001  # m: no hull triangle is thinner than this (its smallest height)
 # m²: no triangle of Drake's own fans (`drake_fan_triangles`) has a smaller doubled area (the norm of
 # the cross product Drake's plane is built from): ten times Drake's limit of 1e-10. Its triangles are
-# held to this, not to MIN_ALTITUDE: on 3,000 cached CoACD pieces, 20 of them (in 19 of 659 objects)
-# have such a fan triangle and lose a vertex for it, where MIN_ALTITUDE would change 215 (87 objects).
+# held to this, not to MIN_ALTITUDE: on 3,000 cached CoACD pieces, 24 of them (in 23 of 659 objects)
+# lose a vertex for it, where MIN_ALTITUDE would change 215 (87 objects).
 MIN_FAN_AREA = 1e-9
 MIN_THICKNESS = 0.002  # m: a piece thinner than this is dropped
 MAX_VERTICES = 1000  # most vertices of a cleaned piece (merging coarsens until it fits)
@@ -90,8 +90,8 @@ def drake_fan_triangles(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
     mesh.mesh_file = MemoryFile(obj_text(vertices, faces), ".obj", "piece")
     hull = Convex(mesh).GetConvexHull()
     hull_points = np.array([hull.vertex(i) for i in range(hull.num_vertices())])
-    written = np.array([[float(f"{c:.9g}") for c in v] for v in np.asarray(vertices, float)])
-    _, index = cKDTree(written).query(hull_points)  # Drake's vertices are some of those written
+    # Drake's vertices are some of those written (to nine digits, far inside MIN_EDGE of their own).
+    _, index = cKDTree(np.asarray(vertices, float)).query(hull_points)
     fans = []
     for f in range(hull.num_faces()):
         polygon = hull.element(f)

@@ -123,7 +123,6 @@ def _most_stable_rpy(hull, p_BScm: np.ndarray) -> tuple[float, float, float]:
 # A body that settles this far (deg) from z up is said to tip over (an UnstablePoseWarning). One that
 # settles less than `settling.ROCK_DEG` from it keeps z up, as the file has it.
 TIPS_DEG = 10.0
-ROCK_DEG = settling.ROCK_DEG
 # A body that turned TIPS_DEG or more without its centre of mass falling this much (m) rolled on a round
 # side (a can lying on its side rolls 15° at 1.5 kg): it rests as it rolled, without the warning.
 TIP_DROP = 0.001
@@ -138,16 +137,16 @@ def _settled_rpy(spec: ObjectSpec, points_O: np.ndarray, label: str) -> tuple[fl
     The simulator's rest is taken as it is (a scanned can rests on its compliant bulge, where a rigid
     roll would tip it onto its rim). A body still moving after SETTLE_TIME is rolled quasi-statically
     from where it got to (`settling.roll_to_rest`), and rests on the face the roll ends on if its centre
-    of mass stands MIN_TIP_ANGLE inside its edges, else on its most stable face. A rest within ROCK_DEG
-    of z up keeps z up; one that rolled on a round side (its centre of mass no lower) rests as it
-    rolled, without the warning."""
+    of mass stands MIN_TIP_ANGLE inside its edges, else on its most stable face. A rest within
+    `settling.ROCK_DEG` of z up keeps z up; one that rolled on a round side (its centre of mass no
+    lower) rests as it rolled, without the warning."""
     try:
         R_TO, rested = settling.settle_in_simulator(spec)
     except RuntimeError as error:  # the simulator gave up (a body it cannot step): as the file has it
         warnings.warn(f"{label}: could not settle it in the simulator ({_one_line(str(error))}); it stands "
                       "z up as the file has it", UnstablePoseWarning, stacklevel=3)
         return (0.0, 0.0, 0.0)
-    down = R_TO.inverse() @ np.array([0.0, 0.0, -1.0])
+    down = settling.table_down(R_TO)
     if not rested:
         hull = trimesh.convex.convex_hull(points_O)
         rest = settling.roll_to_rest(np.asarray(hull.vertices), np.zeros(3), down)
@@ -156,8 +155,8 @@ def _settled_rpy(spec: ObjectSpec, points_O: np.ndarray, label: str) -> tuple[fl
                           "it on its most stable face", UnstablePoseWarning, stacklevel=3)
             return _most_stable_rpy(hull, np.zeros(3))
         down = rest.down
-    turned = math.degrees(math.acos(float(np.clip(-down[2], -1.0, 1.0))))
-    if turned < ROCK_DEG:
+    turned = settling.degrees_from_upright(down)
+    if turned < settling.ROCK_DEG:
         return (0.0, 0.0, 0.0)
     dropped = float(np.max(-points_O[:, 2]) - np.max(points_O @ down))  # the centre of mass's fall, m
     if turned >= TIPS_DEG and dropped > TIP_DROP:

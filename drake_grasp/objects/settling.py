@@ -179,8 +179,17 @@ def stays_up_in_simulator(spec) -> bool:
         R_TO, rested = settle_in_simulator(spec, tilt_deg=SET_DOWN_TILT_DEG)
     except RuntimeError:
         return False
-    down = R_TO.inverse() @ np.array([0.0, 0.0, -1.0])
-    return rested and math.degrees(math.acos(float(np.clip(-down[2], -1.0, 1.0)))) < ROCK_DEG
+    return rested and degrees_from_upright(table_down(R_TO)) < ROCK_DEG
+
+
+def table_down(R_TO: RotationMatrix) -> np.ndarray:
+    """The table's down direction in the body's frame O, for a body resting as `R_TO` has it."""
+    return R_TO.inverse() @ np.array([0.0, 0.0, -1.0])
+
+
+def degrees_from_upright(down: np.ndarray) -> float:
+    """How far (deg) a body whose frame sees the table's down as `down` (unit) is turned from z up."""
+    return math.degrees(math.acos(float(np.clip(-down[2], -1.0, 1.0))))
 
 
 def settle_in_simulator(spec, contact=None, tilt_deg: float = 0.0) -> tuple[RotationMatrix, bool]:
