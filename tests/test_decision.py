@@ -71,6 +71,10 @@ def test_a_slender_standing_object_takes_the_flower_grasp_before_the_upright_one
     assert slender_resemblance(*peg) > 0.99 and slender_resemblance(*marker) > 0.99
     assert slender_resemblance(*bottle) < 0.01 and slender_resemblance(*domino) < 0.01
     assert slender_resemblance(0.12, [0.04, 0.04]) < 0.01  # the cylindrical grasp's F1 and F2 reach it
+    sauce_bottle = (0.092, [0.028, 0.045])  # Dex-Net's KIT sauce bottle: thin one way only
+    assert upright_resemblance(*sauce_bottle) > 0.9 and slender_resemblance(*sauce_bottle) > 0.9
+    assert slender_resemblance(*sauce_bottle) == slender_resemblance(0.092, [0.045, 0.028])  # either order
+    assert slender_resemblance(0.15, [0.04, 0.06]) < 0.01  # 4 cm thin: the wrap holds it
     assert math.isnan(slender_resemblance(0.08, [math.nan, 0.02]))
     res = {"sphere": 0.0, "cylinder": 0.9, "box": 0.1, "flat": 0.19, "upright": upright_resemblance(*peg),
            "slender": slender_resemblance(*peg)}

@@ -15,7 +15,7 @@ known table), so it decides first:
    wide, and narrower than the hand wraps): the cylindrical grasp round the vertical axis, from the
    arm's side (`grasps.cylindrical_grasp`). Like flatness, it is a measured shape that the
    silhouettes' box resemblance saturates on. But **flat** first where the slender resemblance
-   (`primitives.upright`: upright, on a footprint narrower than 3.2 cm) is at least `SLENDER_THRESHOLD`
+   (`primitives.upright`: upright, on a footprint thinner than 3.2 cm one way) is at least `SLENDER_THRESHOLD`
    (1/2): a peg or a marker on its end, which the cylindrical grasp's F1 and F2 pass either side of and
    the flower grasp's two-finger pinch holds (docs/design.md §5.4o). A flat grasp already used up
    leaves the upright one;
