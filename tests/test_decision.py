@@ -75,6 +75,7 @@ def test_a_slender_standing_object_takes_the_flower_grasp_before_the_upright_one
     assert upright_resemblance(*sauce_bottle) > 0.9 and slender_resemblance(*sauce_bottle) > 0.9
     assert slender_resemblance(*sauce_bottle) == slender_resemblance(0.092, [0.045, 0.028])  # either order
     assert slender_resemblance(0.15, [0.04, 0.06]) < 0.01  # 4 cm thin: the wrap holds it
+    assert slender_resemblance(0.30, [0.02, 0.14]) < 0.01  # a tray on edge: not upright (wider than the wrap)
     assert math.isnan(slender_resemblance(0.08, [math.nan, 0.02]))
     res = {"sphere": 0.0, "cylinder": 0.9, "box": 0.1, "flat": 0.19, "upright": upright_resemblance(*peg),
            "slender": slender_resemblance(*peg)}

@@ -21,10 +21,10 @@ from 13.5 mm out: round a standing object thinner than about 2.7 cm they pass ei
 meets it, and pushes it over. Measured on standing cylinders 7 and 12 cm tall, the plain command, seeds
 1-2 (docs/design.md §5.4o): 1.2-2.6 cm across, the cylindrical grasp 0/12 (missed, or dropped), the
 flower grasp (its two-finger pinch) 12/12; 3.0 and 3.5 cm across, the cylindrical grasp held half, at
-4 cm all (the flower grasp all six). It is the same ratio step as the upright resemblance times a step
-down in the footprint's **shorter** side, 1/2 at `SLENDER_SPAN` (3.2 cm, under the pinch's 3.5 cm,
-`grasps.PINCH_MAX_LENGTH`), width `SLENDER_SPAN_WIDTH`. Up to behaviour 0.42.0 the step was in the
-larger side, so a standing object thin one way only kept the cylindrical grasp, which missed or dropped
+4 cm all (the flower grasp all six). It is the upright resemblance times a step down in the footprint's
+**shorter** side, 1/2 at `SLENDER_SPAN` (3.2 cm, under the pinch's 3.5 cm, `grasps.PINCH_MAX_LENGTH`),
+width `SLENDER_SPAN_WIDTH`. Up to behaviour 0.42.0 it was the upright resemblance's ratio step times a
+step down in the larger side, so a standing object thin one way only kept the cylindrical grasp, which missed or dropped
 Dex-Net's KIT sauce bottle (2.8 × 4.5 cm, 9.2 cm tall) at both seeds and 4 of 20 standing slabs and
 elliptic tubes 2.0-3.0 cm thin and 3.9-6.1 cm wide; the flower grasp holds them (its two-finger pinch
 where the footprint is under 3.5 cm both ways, else the three-finger flower; docs/design.md §5.4o).
@@ -44,17 +44,14 @@ SLENDER_SPAN = 0.032  # m
 SLENDER_SPAN_WIDTH = 0.001  # m
 
 
-def _standing_narrower_than(height: float, footprint: np.ndarray, span: float, span_width: float,
-                            shorter_side: bool = False) -> float:
+def _standing_narrower_than(height: float, footprint: np.ndarray, span: float, span_width: float) -> float:
     """The ratio step (height over the footprint's larger side, 1/2 at `UPRIGHT_RATIO`) times a step down
-    in that side (with `shorter_side`: in the footprint's shorter side), 1/2 at `span` (m, width
-    `span_width`); NaN when either input is not finite."""
+    in that side, 1/2 at `span` (m, width `span_width`); NaN when either input is not finite."""
     footprint = np.asarray(footprint, float)
     if not (math.isfinite(height) and np.all(np.isfinite(footprint))) or height <= 0.0:
         return math.nan
-    larger = float(np.max(footprint))
-    ratio = height / max(larger, 1e-6)
-    side = float(np.min(footprint)) if shorter_side else larger
+    side = float(np.max(footprint))
+    ratio = height / max(side, 1e-6)
     return (1.0 - step_down(ratio, UPRIGHT_RATIO, UPRIGHT_RATIO_WIDTH)) * step_down(side, span, span_width)
 
 
@@ -68,7 +65,10 @@ def slender_resemblance(height: float, footprint: np.ndarray) -> float:
     """The slender resemblance in [0, 1] of an object `height` m tall whose footprint spans `footprint`
     (m, its two horizontal sides): upright, and thinner one way than the cylindrical grasp closes on
     (module docstring); NaN when either is not finite."""
-    return _standing_narrower_than(height, footprint, SLENDER_SPAN, SLENDER_SPAN_WIDTH, shorter_side=True)
+    upright = upright_resemblance(height, footprint)
+    if not math.isfinite(upright):
+        return math.nan
+    return upright * step_down(float(np.min(np.asarray(footprint, float))), SLENDER_SPAN, SLENDER_SPAN_WIDTH)
 
 
 def table_top_uprightness(estimate) -> float:
