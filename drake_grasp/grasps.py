@@ -500,9 +500,17 @@ COMPLIANT_GRASPS = {
 }
 
 
-# The compliant grasp for each primitive shape (the decision: the grasp of the most resembling shape).
-GRASP_OF_SHAPE = {"sphere": GraspType.SPHERICAL.value, "cylinder": GraspType.CYLINDRICAL.value, "box": GraspType.BOX.value,
-                  "flat": GraspType.PRECISION.value, "upright": GraspType.CYLINDRICAL.value}
+# The compliant grasps of each shape the decision chooses (`primitives.decision`), in the order they are
+# tried on one object (`funnel.planning.grasp_of`: the next when the one before has used up its tries).
+# The paper's three shapes and the flat one have one grasp each. An upright object (a bottle, a
+# carton on end) takes the box grasp from above first: the palm on its top, the fingers down its sides
+# and, on a bottle, under its shoulder; then the cylindrical wrap from the arm's side, which let 1 kg
+# bottles turn out of it (docs/design.md §5.4q, behaviour 0.44.0).
+GRASPS_OF_SHAPE = {"sphere": (GraspType.SPHERICAL.value,), "cylinder": (GraspType.CYLINDRICAL.value,),
+                   "box": (GraspType.BOX.value,), "flat": (GraspType.PRECISION.value,),
+                   "upright": (GraspType.BOX.value, GraspType.CYLINDRICAL.value)}
+# The compliant grasp of each shape at a first attempt (the decision: the grasp of the most resembling shape).
+GRASP_OF_SHAPE = {shape: grasps[0] for shape, grasps in GRASPS_OF_SHAPE.items()}
 
 
 def plan_compliant_grasp(grasp: GraspType | str, estimate: ObjectEstimate) -> GraspPlan:

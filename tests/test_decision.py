@@ -44,7 +44,7 @@ def test_fig6_chooses_by_the_same_rule_on_mean_resemblances():
     assert chosen_grasp(stats) == "box"
 
 
-def test_a_standing_bottle_is_upright_and_takes_the_cylindrical_grasp_after_flatness():
+def test_a_standing_bottle_is_upright_and_takes_the_box_grasp_then_the_wrap_after_flatness():
     from drake_grasp.grasps import GRASP_OF_SHAPE
     from drake_grasp.primitives.upright import upright_resemblance
 
@@ -54,10 +54,10 @@ def test_a_standing_bottle_is_upright_and_takes_the_cylindrical_grasp_after_flat
     assert bottle > 0.99 and mug < 0.01 and carton < 0.01
     assert math.isnan(upright_resemblance(math.nan, [0.07, 0.07]))
     res = {"sphere": 0.0, "cylinder": 0.0, "box": 1.0, "flat": 0.0, "upright": bottle}
-    assert choose_shape(res) == "upright" and GRASP_OF_SHAPE["upright"] == "cylindrical"
+    assert choose_shape(res) == "upright" and GRASP_OF_SHAPE["upright"] == "box"
     assert decision_margin(res) == pytest.approx(min(1.0, 2 * (bottle - 0.5)))
     assert choose_shape({**res, "flat": 0.9}) == "flat"  # a small flat object stays the flower's
-    assert choose_shape(res, exclude=("upright",)) == "box"  # the cylindrical grasp failed: tried again
+    assert choose_shape(res, exclude=("upright",)) == "box"  # both upright grasps failed: the argmax's
 
 
 def test_a_slender_standing_object_takes_the_flower_grasp_before_the_upright_one():
@@ -128,6 +128,39 @@ def test_the_seam_executes_the_flower_grasp_for_a_low_ball_and_the_spherical_one
         choice = choose_grasp(estimate, estimate.as_grasp_estimate())
         assert choice.chosen == choice.executed == executed
         assert choice.plan.grasp.value == executed
+
+
+def test_the_seam_tries_a_standing_bottle_from_above_then_wraps_it_from_the_arms_side():
+    """An upright object's grasps in order (docs/design.md §5.4q): the box grasp from above, its palm
+    level over the top; after it failed, the cylindrical wrap from the arm's side, dipping 45°; after
+    both, the paper's argmax without them (the sphere here)."""
+    import numpy as np
+
+    from drake_grasp.funnel.planning import choose_grasp, grasp_of
+    from drake_grasp.primitives.estimate import ObjectEstimate
+    from drake_grasp.primitives.upright import upright_resemblance
+
+    height, width = 0.20, 0.07
+    axes = np.array([[0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]])  # first axis vertical
+    estimate = ObjectEstimate(
+        status="ok", centre=np.array([0.55, 0.0, height / 2]), depth=0.35,
+        camera_position=np.array([0.55, 0.0, 0.45]), axes=axes, extents=np.array([height, width, width]),
+        principal_axis=np.array([0.0, 0.0, 1.0]),
+        resemblances={"sphere": 0.2, "cylinder": 0.0, "box": 1.0, "flat": 0.0,
+                      "upright": upright_resemblance(height, [width, width])})
+    first = choose_grasp(estimate, estimate.as_grasp_estimate())
+    assert first.chosen == first.executed == first.plan.grasp.value == "box"
+    approach = first.plan.X_WP_target.rotation().col(2)
+    assert approach[2] < -0.99  # straight down onto the top
+    assert first.plan.X_WP_target.translation()[2] == pytest.approx(height)  # the palm onto the top
+    second = choose_grasp(estimate, estimate.as_grasp_estimate(), exclude=("box",))
+    assert second.executed == second.plan.grasp.value == "cylindrical"
+    approach = second.plan.X_WP_target.rotation().col(2)
+    assert math.degrees(math.asin(-approach[2])) == pytest.approx(45.0, abs=1.0)  # from the side, dipping
+    third = choose_grasp(estimate, estimate.as_grasp_estimate(), exclude=("box", "cylindrical"))
+    assert third.executed == "spherical"
+    assert grasp_of("upright") == "box" and grasp_of("upright", ("box",)) == "cylindrical"
+    assert grasp_of("flat", ("precision",)) == "precision"  # the flower grasp's second try
 
 
 def test_a_round_object_takes_the_spherical_grasp_where_the_box_leads():

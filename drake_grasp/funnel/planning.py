@@ -12,7 +12,9 @@ its funnel is open, else the widest funnel's centre, then the rest), which the e
 that order until the arm reaches one (`GraspExecutor.plan_reachable_motion`).
 
 The flower grasp, which the search does not score (a thin object gives every grasp ε = 0), faces the
-footprint the camera saw: F1 and F2 on its fuller side (`facing_the_footprint`, `flower_facing`).
+footprint the camera saw: F1 and F2 on its fuller side (`facing_the_footprint`, `flower_facing`). An
+upright object's grasps (the box grasp from above, then the wrap from the arm's side: `grasp_of`) run
+at their primitive's pose, as they were measured.
 
 One search per decision: the branches of one exploration (Fig. 6 executes every grasp from a copy of
 the state at the decision) share it through a small cache keyed by what the search reads.
@@ -31,7 +33,7 @@ from drake_grasp.flower_facing import faces_fuller_side
 from drake_grasp.funnel.observed_shape import observed_shape
 from drake_grasp.funnel.params import FunnelParams
 from drake_grasp.funnel.search import FunnelSearch, search
-from drake_grasp.grasps import (ARM_BASE_XY, GRASP_OF_SHAPE, NEAR_SYMMETRIES, GraspPlan, GraspType,
+from drake_grasp.grasps import (ARM_BASE_XY, GRASP_OF_SHAPE, GRASPS_OF_SHAPE, NEAR_SYMMETRIES, GraspPlan, GraspType,
                                 near_symmetric_alternatives, plan_compliant_grasp, turned_about_approach)
 from drake_grasp.primitives.decision import FLAT, UPRIGHT, choose_shape, choose_with_funnels
 from drake_grasp.primitives.scores import SHAPES
@@ -75,13 +77,15 @@ def choose_grasp(estimate, grasp_estimate, forced: str | None = None, params: Fu
         params: the funnel search's choices; None: the paper's algorithm.
         height_map: what the depth views saw; None or empty: the paper's algorithm.
         exclude: the grasps that already failed on this object, once per failure (a later attempt):
-            the decision runs without those that used up their tries (`tries_left`), and a flower
-            grasp tried again is turned (`retry_plan`).
+            the decision runs without the shapes whose grasps all used up their tries (`tries_left`),
+            a shape with another grasp executes that one (`grasp_of`), and a flower grasp tried again
+            is turned (`retry_plan`).
     """
     resemblances = dict(estimate.resemblances)
-    excluded = tuple(shape for shape, grasp in GRASP_OF_SHAPE.items() if not tries_left(grasp, exclude))
+    excluded = tuple(shape for shape, grasps in GRASPS_OF_SHAPE.items()
+                     if not any(tries_left(grasp, exclude) for grasp in grasps))
     shape = choose_shape(resemblances, excluded)
-    paper_choice = GRASP_OF_SHAPE[shape]
+    paper_choice = grasp_of(shape, exclude)
     if shape == UPRIGHT and (forced or paper_choice) == GraspType.CYLINDRICAL.value:
         grasp_estimate = dataclasses.replace(grasp_estimate, principal_axis=np.array([0.0, 0.0, 1.0]))
     found = None
@@ -110,6 +114,14 @@ def choose_grasp(estimate, grasp_estimate, forced: str | None = None, params: Fu
 # from-above attempts after a failed flower grasp held), while the flower grasp itself holds a
 # small object at some placements and not at others (ring 012: held at trial seeds 1 and 3, dropped at 2).
 TRIES = {GraspType.PRECISION.value: 2}
+
+
+def grasp_of(shape: str, failed: tuple = ()) -> str:
+    """The grasp a chosen `shape` executes after the failures `failed` (grasp names, once per failure):
+    the first of its grasps (`grasps.GRASPS_OF_SHAPE`) with tries left, else its last. An upright
+    object's is the box grasp from above, then the cylindrical wrap from the arm's side."""
+    grasps = GRASPS_OF_SHAPE[shape]
+    return next((grasp for grasp in grasps if tries_left(grasp, failed)), grasps[-1])
 
 
 def tries_left(grasp: str, failed: tuple) -> bool:

@@ -12,9 +12,10 @@ known table), so it decides first:
    2.5 cm or smaller than 7 cm, the middle of its logistic steps);
 2. **upright** when the upright resemblance (`primitives.upright`, also from the table-top estimate)
    is at least `UPRIGHT_THRESHOLD` (1/2: standing more than 1.8 times as tall as its footprint is
-   wide, and narrower than the hand wraps): the cylindrical grasp round the vertical axis, from the
-   arm's side (`grasps.cylindrical_grasp`). Like flatness, it is a measured shape that the
-   silhouettes' box resemblance saturates on. But **flat** first where the slender resemblance
+   wide, and narrower than the hand wraps): the box grasp from above first, its palm on the top and its
+   fingers down the sides (under a bottle's shoulder), then the cylindrical grasp round the vertical
+   axis from the arm's side (`grasps.GRASPS_OF_SHAPE`, docs/design.md §5.4q). Like flatness, it is a
+   measured shape that the silhouettes' box resemblance saturates on. But **flat** first where the slender resemblance
    (`primitives.upright`: upright, on a footprint thinner than 3.2 cm one way) is at least `SLENDER_THRESHOLD`
    (1/2): a peg or a marker on its end, which the cylindrical grasp's F1 and F2 pass either side of and
    the flower grasp's two-finger pinch holds (docs/design.md §5.4o). A flat grasp already used up
@@ -51,8 +52,8 @@ known table), so it decides first:
    funnel on the shape the camera saw is empty (ε = 0 at every pose scored) is not chosen when another's
    is not; the most resembling of those with a funnel is (`choose_with_funnels`). The paper's argmax
    stands whenever its grasp has a funnel, or no grasp has one. Steps 1 and 2 keep precedence: a plate
-   gives ε = 0 to every grasp quasi-statically, so no funnel vetoes the flat choice, and the search's
-   variants are of grasps from above, not the upright grasp's.
+   gives ε = 0 to every grasp quasi-statically, so no funnel vetoes the flat choice, and an upright
+   object's grasps run at their primitive's pose, as they were measured.
 
 The *margin* says how clear the decision was, in [0, 1]: in step 3, the lead of the best resemblance
 over the next; a flat resemblance near its threshold makes any decision close, so its own distance
