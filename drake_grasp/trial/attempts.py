@@ -15,6 +15,8 @@ could not reach any candidate of the grasp, the next attempt begins:
   decision's order, at its own best pose on the new estimate. The flower grasp alone gets a second
   try, turned a half-turn about its approach, before the decision runs without it
   (`funnel.planning.TRIES`): the from-above grasps cannot reach the small and thin objects it is for.
+  An upright object has two grasps in turn, the box grasp from above and then the wrap from the arm's
+  side (`funnel.planning.grasp_of`).
 
 It stops at the first attempt the camera sees hold, when the object is no longer found or the estimate
 cannot place a grasp, or after N attempts. The record is the last attempt's (its success is the
