@@ -20,6 +20,14 @@ with the pieces (about 0.2 ms per piece on one core). The solid is coarsened and
 3. *merging*: consecutive rows whose runs span the same blocks at the same heights (within `LEVEL`)
    are one piece (a box lying on a face is one piece; a 9 cm ball fifteen).
 
+Where the depth views saw free space under the object (`HeightMap.carved`: `primitives.free_space`,
+docs/design.md §5.4r), a column is at most two intervals (`free_space.column_intervals`): a lower
+block from the table and an upper shell over the free space. The blocks are made of each layer apart
+(a block takes an interval that most of its object cells have; its mean top and bottom), the upper
+shell at least `MIN_THICKNESS` thick, and each layer is cut into strips as above (rows merge only where
+their bottoms agree too). So the hand closes on a ball's flank, a pawn's waist and head and a vase's
+neck as the camera saw them, not on walls down to the table.
+
 Frame: the observed shape's frame O has the world's axes and its origin at the table-top estimate's
 centre (`table_top.estimate`: the solid's horizontal centroid, vertically between its centroid and
 half its height), which is also the centre of mass the ε metric uses; the torque scale is the largest
@@ -36,12 +44,18 @@ from pydrake.math import RigidTransform
 from scipy.spatial import ConvexHull
 
 from drake_grasp.objects.spec import ObjectSpec, ShapePiece, _cached_hull_obj
-from drake_grasp.primitives import table_top
+from drake_grasp.primitives import free_space, table_top
 
 LEVEL = 0.002  # m: heights are rounded to this step before columns merge
 MIN_BLOCK, MAX_BLOCK = 0.006, 0.015  # m: the block edge's bounds
 BLOCKS_ACROSS = 12  # blocks along the solid's larger horizontal side (before the bounds)
 DENSITY = 200.0  # kg/m³: for the spec's mass only (the quasi-static hand moves nothing)
+MIN_THICKNESS = 0.005  # m: a carved column keeps at least this much under its top
+BOTTOM_LEVEL = free_space.LEVEL  # m: bottoms within this merge (they are known to a carved level)
+# A carved shape has two layers and more strips (a 12 cm ball: 24 against 9); a closing's cost grows with
+# the pieces, so rows merge more coarsely (twice, four times LEVEL), then blocks grow (twice, three times)
+# until there are at most this many.
+MAX_CARVED_PIECES = 24
 
 
 @dataclasses.dataclass(frozen=True)
@@ -113,27 +127,28 @@ def observed_shape(height_map: table_top.HeightMap, min_cells: int = 3) -> Obser
         return None
     h = height_map.filled_heights()
     f = block_factor(height_map, h > 0)
-    n = h.shape[0]
-    m = -(-n // f)  # blocks per side
-    padded = np.zeros((m * f, m * f))
-    padded[:n, :n] = h
-    blocks = padded.reshape(m, f, m, f).transpose(0, 2, 1, 3).reshape(m, m, f * f)
-    counts = np.sum(blocks > 0, axis=2)
-    sums = np.sum(blocks, axis=2)
-    occupied = counts * 2 >= f * f
-    heights = np.where(occupied, sums / np.maximum(counts, 1), 0.0)
+    if height_map.carved is None:
+        layers = _layers(h, None, f)
+        strips = _layer_strips(layers, LEVEL, BOTTOM_LEVEL)
+    else:  # coarser merging, then larger blocks, until the closing's cost is bounded
+        for f_times, coarsening in ((1, 1), (1, 2), (1, 4), (2, 2), (2, 4), (3, 4)):
+            layers = _layers(h, height_map.carved, f * f_times)
+            strips = _layer_strips(layers, coarsening * LEVEL, coarsening * BOTTOM_LEVEL)
+            if len(strips) <= MAX_CARVED_PIECES:
+                break
+        f *= f_times
     block = f * height_map.cell
     origin = np.asarray(height_map.origin, float)
     pieces = []
-    for i0, i1, j0, j1 in _strips(heights):
+    for tops_of, bottoms_of, (i0, i1, j0, j1) in strips:
         ii, jj = np.meshgrid(np.arange(i0, i1), np.arange(j0, j1), indexing="ij")
-        tops = heights[i0:i1, j0:j1]
+        tops, bottoms = tops_of[i0:i1, j0:j1].ravel(), bottoms_of[i0:i1, j0:j1].ravel()
         corners = []
         for di in (0, 1):
             for dj in (0, 1):
                 x = origin[0] + (ii + di).ravel() * block
                 y = origin[1] + (jj + dj).ravel() * block
-                for z in (np.zeros(tops.size), tops.ravel()):
+                for z in (bottoms, tops):
                     corners.append(np.column_stack([x, y, height_map.table_height + z]))
         pieces.append(np.unique(np.vstack(corners), axis=0))
     if not pieces:
@@ -141,10 +156,49 @@ def observed_shape(height_map: table_top.HeightMap, min_cells: int = 3) -> Obser
     return ObservedShape(tuple(pieces), np.asarray(whole.centre, float), float(height_map.table_height), block)
 
 
-def _strips(heights: np.ndarray) -> list[tuple[int, int, int, int]]:
+def _per_block(values: np.ndarray, present: np.ndarray, f: int) -> tuple[np.ndarray, np.ndarray]:
+    """(cells present per block of f × f cells, the mean of `values` over them; 0 where none)."""
+    n = values.shape[0]
+    m = -(-n // f)  # blocks per side
+    padded = np.zeros((2, m * f, m * f))
+    padded[0, :n, :n] = np.where(present, values, 0.0)
+    padded[1, :n, :n] = present
+    sums = padded.reshape(2, m, f, m, f).transpose(0, 1, 3, 2, 4).reshape(2, m, m, f * f).sum(axis=3)
+    return sums[1], np.where(sums[1] > 0, sums[0] / np.maximum(sums[1], 1), 0.0)
+
+
+def _layers(h: np.ndarray, carved: np.ndarray | None, f: int) -> list[tuple[np.ndarray, np.ndarray]]:
+    """The blocks' (tops, bottoms), m above the table, per layer: the column solid's one (bottoms at the
+    table), or with `carved` levels the lower blocks' and the upper shells' (module docstring)."""
+    counts, heights = _per_block(h, h > 0, f)
+    occupied = counts * 2 >= f * f
+    heights = np.where(occupied, heights, 0.0)
+    if carved is None:
+        return [(heights, np.zeros_like(heights))]
+    lower, floor = free_space.column_intervals(carved, h, MIN_THICKNESS)
+    lower_counts, lower_tops = _per_block(lower, lower > 0, f)
+    upper = np.isfinite(floor)
+    upper_counts, upper_tops = _per_block(h, upper, f)
+    _, upper_floors = _per_block(np.nan_to_num(floor), upper, f)
+    has_lower = occupied & (lower_counts * 2 >= counts)
+    has_upper = occupied & (upper_counts * 2 >= counts)
+    neither = occupied & ~has_lower & ~has_upper  # neither interval in most of its cells: the column
+    upper_floors = np.clip(upper_floors, 0.0, np.maximum(upper_tops - MIN_THICKNESS, 0.0))
+    return [(np.where(has_lower, lower_tops, np.where(neither, heights, 0.0)), np.zeros_like(heights)),
+            (np.where(has_upper, upper_tops, 0.0), np.where(has_upper, upper_floors, 0.0))]
+
+
+def _layer_strips(layers, level: float, bottom_level: float) -> list:
+    """Every layer's strips, as (tops, bottoms, (i0, i1, j0, j1))."""
+    return [(tops, bottoms, strip) for tops, bottoms in layers for strip in _strips(tops, bottoms, level, bottom_level)]
+
+
+def _strips(heights: np.ndarray, bottoms: np.ndarray | None = None, level: float = LEVEL,
+            bottom_level: float = BOTTOM_LEVEL) -> list[tuple[int, int, int, int]]:
     """Strips (i0, i1, j0, j1), ends exclusive, covering the blocks of positive height: each row's runs
     of occupied blocks along j, a run merged with the same run of the rows that follow while its heights
-    stay within `LEVEL` of the first row's."""
+    stay within `level` of the first row's (and its `bottoms` within `bottom_level`)."""
+    bottoms = np.zeros_like(heights) if bottoms is None else bottoms
     strips = []
     open_runs: dict[tuple[int, int], int] = {}  # (j0, j1) -> first row
     m = heights.shape[0]
@@ -155,7 +209,9 @@ def _strips(heights: np.ndarray) -> list[tuple[int, int, int, int]]:
             edges = np.flatnonzero(np.diff(occupied.astype(int)))
             runs = {(int(a), int(b)) for a, b in zip(edges[::2], edges[1::2])}
         for run, first in list(open_runs.items()):
-            same = run in runs and np.all(np.abs(heights[i, run[0]:run[1]] - heights[first, run[0]:run[1]]) <= LEVEL)
+            same = (run in runs
+                    and np.all(np.abs(heights[i, run[0]:run[1]] - heights[first, run[0]:run[1]]) <= level)
+                    and np.all(np.abs(bottoms[i, run[0]:run[1]] - bottoms[first, run[0]:run[1]]) <= bottom_level))
             if not same:
                 strips.append((first, i, *run))
                 del open_runs[run]

@@ -168,7 +168,8 @@ def _uncertainty_centre(estimate) -> float | None:
 def _search(grasp_estimate, params: FunnelParams, height_map: HeightMap, uncertainty: float | None):
     """The search over the paper's three grasps, or None when the map holds no shape; cached."""
     digest = hashlib.sha256()
-    for array in (height_map.heights, height_map.origin, grasp_estimate.center, grasp_estimate.R_WB,
+    for array in (height_map.heights, np.zeros(0) if height_map.carved is None else height_map.carved,
+                  height_map.origin, grasp_estimate.center, grasp_estimate.R_WB,
                   grasp_estimate.size, np.zeros(0) if grasp_estimate.principal_axis is None
                   else grasp_estimate.principal_axis):
         digest.update(np.ascontiguousarray(np.nan_to_num(np.asarray(array, float), nan=-1.0)).tobytes())

@@ -5,8 +5,9 @@
 raises two height maps with them, the views dealt alternately to each (`table_top.HeightMap`). Its
 `table_top` output is the estimate of both maps together and the spread of the two halves
 (`table_top.estimate`, `table_top.spread`), as a vector the ObjectEstimator reads
-(`TableTopVector`). It steers nothing: the exploration, and so every silhouette primitive, is the
-same with it as without it.
+(`TableTopVector`). Each view also carves the free space it saw through out of the columns under the
+object (`free_space.carve`, when `TableTopParams.carve`): the `height_map` output's carved levels. It steers
+nothing: the exploration, and so every silhouette primitive, is the same with it as without it.
 """
 
 import dataclasses
@@ -18,7 +19,7 @@ from pydrake.math import RigidTransform
 from pydrake.systems.framework import Context, LeafSystem
 from pydrake.systems.sensors import ImageDepth32F
 
-from drake_grasp.primitives import table_top
+from drake_grasp.primitives import free_space, table_top
 from drake_grasp.primitives.camera import SilhouetteCamera
 from drake_grasp.primitives.camera_model import CameraIntrinsics
 
@@ -86,12 +87,13 @@ class DepthViews(LeafSystem):
         active (1): 0 stops the views (the exploration is over); unconnected, always active.
     Output ports:
         table_top (27): `TableTopVector`, computed from the state (only when a view changed it).
-        height_map (abstract `table_top.HeightMap`): both halves' views together (the funnel search
-            closes the hand on its column solid: `funnel.observed_shape`).
+        height_map (abstract `table_top.HeightMap`): both halves' views together, with the carved
+            levels (the funnel search closes the hand on its column solid: `funnel.observed_shape`).
     """
 
     # The state's head: [origin set (1/0), origin x, origin y, views, clipped]; the two maps' heights
-    # follow, then their support points (`table_top.HeightMap.support`).
+    # follow, then their support points (`table_top.HeightMap.support`), then the carved levels of both
+    # (`free_space.carve`: one float of bits per cell).
     _HEAD = 5
 
     def __init__(self, camera: SilhouetteCamera, params: table_top.TableTopParams, table_height: float = 0.0):
@@ -108,7 +110,7 @@ class DepthViews(LeafSystem):
         self._pose_port = self.DeclareAbstractInputPort("X_WC", AbstractValue.Make(RigidTransform()))
         self._active_port = self.DeclareVectorInputPort("active", 1)
         initial = np.concatenate([np.zeros(self._HEAD), np.full(2 * n * n, np.nan),
-                                  np.full(2 * table_top.SUPPORT_DIRECTIONS * 2, np.nan)])
+                                  np.full(2 * table_top.SUPPORT_DIRECTIONS * 2, np.nan), np.zeros(n * n)])
         self._state = self.DeclareDiscreteState(initial)
         self.DeclareVectorOutputPort("table_top", TableTopVector.SIZE, self._CalcTableTop,
                                      {self.discrete_state_ticket(self._state)})
@@ -137,6 +139,12 @@ class DepthViews(LeafSystem):
         start = self._HEAD + 2 * n * n + half * k
         return slice(start, start + k)
 
+    def _carved_slice(self) -> slice:
+        """Where the carved levels lie in the state (after both maps' support points)."""
+        n = self.params.cells
+        start = self._support_slice(1).stop
+        return slice(start, start + n * n)
+
     def _View(self, context: Context, discrete_state) -> None:
         if self._active_port.HasValue(context) and self._active_port.Eval(context)[0] < 0.5:
             return
@@ -162,13 +170,25 @@ class DepthViews(LeafSystem):
         height_map.add(above)
         state[self._HEAD + half * n * n:self._HEAD + (half + 1) * n * n] = height_map.heights.reshape(-1)
         state[self._support_slice(half)] = height_map.support.reshape(-1)
+        if self.params.carve:
+            both = self.maps(state)
+            heights = np.fmax(both[0].heights, both[1].heights)
+            bits = np.asarray(state[self._carved_slice()]).reshape(n, n)
+            state[self._carved_slice()] = free_space.carve(
+                bits, heights, both[0].origin, self.params.cell, self.table_height, depth, self.intrinsics,
+                X_WC.rotation().matrix(), X_WC.translation()).reshape(-1)
         state[3] += 1.0
         state[4] = float(height_map.clipped or state[4] > 0.5)
         discrete_state.get_mutable_vector(self._state).SetFromVector(state)
 
     def _CalcHeightMap(self, context: Context, output: AbstractValue) -> None:
-        first, second = self.maps(context.get_discrete_state(self._state).get_value())
-        output.set_value(first.merged(second))
+        state = context.get_discrete_state(self._state).get_value()
+        first, second = self.maps(state)
+        both = first.merged(second)
+        if self.params.carve:
+            n = self.params.cells
+            both.carved = np.array(state[self._carved_slice()]).reshape(n, n)
+        output.set_value(both)
 
     def _CalcTableTop(self, context: Context, output) -> None:
         state = context.get_discrete_state(self._state).get_value()

@@ -95,6 +95,9 @@ class TableTopParams:
         cells: the map's cells along x and along y (a square around the first view's object).
         pixel_stride: every `pixel_stride`-th pixel of the mask along u and v is back-projected.
         min_cells: fewer occupied cells than this is no estimate (the object barely seen).
+        carve: carve the free space the views saw under the object out of the column solid the funnel
+            search closes the hand on (`free_space`; docs/design.md §5.4r). The estimate itself (centre,
+            axes, extents) is the height map's either way.
     """
 
     view_period: float = 0.5
@@ -102,6 +105,7 @@ class TableTopParams:
     cells: int = 128
     pixel_stride: int = 2
     min_cells: int = 12
+    carve: bool = True
 
     def validate(self) -> None:
         if not (math.isfinite(self.view_period) and self.view_period > 0):
@@ -151,6 +155,8 @@ class HeightMap:
             the outline). A cell is raised by any point in it, so along an edge slanted to the grid the
             extreme cells' centres stand up to half a cell's diagonal outside the object (a 2.3 cm
             domino yawed 9 degrees read 2.63 cm); the support points do not.
+        carved: (n, n) per cell, the levels the views saw free (`free_space.carve`: bits held in floats),
+            or None (nothing carved).
     """
 
     origin: np.ndarray
@@ -159,6 +165,7 @@ class HeightMap:
     table_height: float = 0.0
     clipped: bool = False
     support: np.ndarray | None = None
+    carved: np.ndarray | None = None
 
     @classmethod
     def around(cls, centre_xy, cell: float, cells: int, table_height: float = 0.0) -> "HeightMap":
@@ -191,8 +198,10 @@ class HeightMap:
         if self.support is not None and other.support is not None:
             both = np.vstack([self.support, other.support])
             support = raised_support(empty_support(), both[np.all(np.isfinite(both), axis=1)])
+        carved = self.carved if other.carved is None else (other.carved if self.carved is None else (
+            self.carved.astype(np.int64) | other.carved.astype(np.int64)).astype(float))
         return HeightMap(self.origin.copy(), self.cell, heights, self.table_height, self.clipped or other.clipped,
-                         support)
+                         support, carved)
 
     def outline(self) -> np.ndarray | None:
         """The support's distinct points (K × 2, m), or None where it has fewer than 3 (or none)."""
