@@ -75,10 +75,10 @@ def carve(bits: np.ndarray, heights: np.ndarray, origin, cell: float, table_heig
     image = np.asarray(depth, float).reshape(intrinsics.height, intrinsics.width)
     measured = np.zeros(len(points))
     measured[inside] = image[v[inside], u[inside]]  # inf: the ray met nothing in range (free)
-    free = inside & (measured > z + TOLERANCE)
-    carved = np.zeros(n * n, np.int64)
-    np.bitwise_or.at(carved, ii[free] * n + jj[free], np.left_shift(np.int64(1), kk[free].astype(np.int64)))
-    return (bits.astype(np.int64).reshape(-1) | carved).reshape(n, n).astype(float)
+    free = (inside & (measured > z + TOLERANCE)).reshape(i1 - i0, j1 - j0, levels)
+    carved = np.zeros((n, n), np.int64)
+    carved[i0:i1, j0:j1] = free @ np.left_shift(np.int64(1), np.arange(levels, dtype=np.int64))
+    return (bits.astype(np.int64) | carved).astype(float)
 
 
 def column_intervals(bits: np.ndarray, heights: np.ndarray, min_thickness: float) -> tuple[np.ndarray, np.ndarray]:
