@@ -96,8 +96,9 @@ class TableTopParams:
         pixel_stride: every `pixel_stride`-th pixel of the mask along u and v is back-projected.
         min_cells: fewer occupied cells than this is no estimate (the object barely seen).
         carve: carve the free space the views saw under the object out of the column solid the funnel
-            search closes the hand on (`free_space`; docs/design.md §5.4r). The estimate itself (centre,
-            axes, extents) is the height map's either way.
+            search closes the hand on (`free_space`; docs/design.md §5.4r); the scenario `funnel` does.
+            Nothing else reads it, so it is off by default. The estimate itself (centre, axes, extents)
+            is the height map's either way.
     """
 
     view_period: float = 0.5
@@ -105,7 +106,7 @@ class TableTopParams:
     cells: int = 128
     pixel_stride: int = 2
     min_cells: int = 12
-    carve: bool = True
+    carve: bool = False
 
     def validate(self) -> None:
         if not (math.isfinite(self.view_period) and self.view_period > 0):
