@@ -198,3 +198,25 @@ def test_a_carved_ball_stays_within_the_piece_budget_and_near_its_volume():
     assert len(carved.pieces) <= MAX_CARVED_PIECES
     assert volume(column) > 1.2 * ball
     assert volume(carved) == pytest.approx(ball, rel=0.2)
+
+
+def test_a_carved_ring_keeps_its_hole_whatever_its_blocks():
+    """A 5.2 cm ring 1.8 cm tall whose tube curves in under it (carved ideally): its hole, seen down to the
+    table, stays open; blocks twice as large would close it, so the shape never takes them."""
+    from drake_grasp.funnel.observed_shape import _holes, block_factor
+
+    outer, inner, tube = 0.026, 0.012, 0.009
+    m = HeightMap.around(CENTRE, 0.003, 128)
+    ij = np.indices(m.heights.shape).reshape(2, -1).T
+    r = np.hypot(*(m.origin + (ij + 0.5) * m.cell - CENTRE).T).reshape(m.heights.shape)
+    across = np.clip(tube**2 - (r - (outer + inner) / 2) ** 2, 0.0, None) ** 0.5  # the tube's half-height
+    on = (r > inner) & (r < outer) & (across > 0)
+    m.heights[:] = np.where(on, tube + across, np.nan)
+    levels = np.arange(free_space.LEVELS)
+    free = (levels + 0.5) * LEVEL < (tube - across)[..., None]
+    m.carved = np.where(on, (free * (1 << levels)).sum(axis=-1), 0).astype(float)
+    f = block_factor(m, np.nan_to_num(m.heights) > 0)
+    assert _holes(np.nan_to_num(m.heights) > 0, f) == 1
+    shape = observed_shape(m)
+    assert not _inside(shape, [CENTRE[0], CENTRE[1], 0.005])  # the hole
+    assert _inside(shape, [CENTRE[0] + (outer + inner) / 2, CENTRE[1], tube])  # the tube

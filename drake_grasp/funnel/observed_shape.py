@@ -54,7 +54,8 @@ MIN_THICKNESS = 0.005  # m: a carved column keeps at least this much under its t
 BOTTOM_LEVEL = free_space.LEVEL  # m: bottoms within this merge (they are known to a carved level)
 # A carved shape has two layers and more strips (a 12 cm ball: 24 against 9); a closing's cost grows with
 # the pieces, so rows merge more coarsely (twice, four times LEVEL), then blocks grow (twice, three times)
-# until there are at most this many.
+# while they keep every hole the footprint has at its own blocks, until there are at most this many; if
+# none does, the column solid is closed on (a 5 cm ring's hole closed at twice its blocks).
 MAX_CARVED_PIECES = 24
 
 
@@ -130,12 +131,18 @@ def observed_shape(height_map: table_top.HeightMap, min_cells: int = 3) -> Obser
     if height_map.carved is None:
         layers = _layers(h, None, f)
         strips = _layer_strips(layers, LEVEL, BOTTOM_LEVEL)
-    else:  # coarser merging, then larger blocks, until the closing's cost is bounded
+    else:  # coarser merging, then larger blocks that keep every hole, until the closing's cost is bounded
+        holes = _holes(h > 0, f)
         for f_times, coarsening in ((1, 1), (1, 2), (1, 4), (2, 2), (2, 4), (3, 4)):
+            if f_times > 1 and _holes(h > 0, f * f_times) < holes:
+                continue
             layers = _layers(h, height_map.carved, f * f_times)
             strips = _layer_strips(layers, coarsening * LEVEL, coarsening * BOTTOM_LEVEL)
             if len(strips) <= MAX_CARVED_PIECES:
                 break
+        else:  # no carved shape within the budget keeps the holes: the column solid
+            f_times, layers = 1, _layers(h, None, f)
+            strips = _layer_strips(layers, LEVEL, BOTTOM_LEVEL)
         f *= f_times
     block = f * height_map.cell
     origin = np.asarray(height_map.origin, float)
@@ -165,6 +172,18 @@ def _per_block(values: np.ndarray, present: np.ndarray, f: int) -> tuple[np.ndar
     padded[1, :n, :n] = present
     sums = padded.reshape(2, m, f, m, f).transpose(0, 1, 3, 2, 4).reshape(2, m, m, f * f).sum(axis=3)
     return sums[1], np.where(sums[1] > 0, sums[0] / np.maximum(sums[1], 1), 0.0)
+
+
+def _holes(occupied: np.ndarray, f: int) -> int:
+    """How many holes the blocks of f × f cells leave in the footprint: empty regions that do not reach
+    the map's edge (a ring's, a handle's, seen down to the table)."""
+    from scipy import ndimage
+
+    counts, _ = _per_block(occupied.astype(float), occupied, f)
+    blocks = counts * 2 >= f * f
+    labels, count = ndimage.label(~blocks)
+    edge = set(np.unique(np.concatenate([labels[0], labels[-1], labels[:, 0], labels[:, -1]])))
+    return len(set(range(1, count + 1)) - edge)
 
 
 def _layers(h: np.ndarray, carved: np.ndarray | None, f: int) -> list[tuple[np.ndarray, np.ndarray]]:
