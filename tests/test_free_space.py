@@ -128,6 +128,7 @@ def test_the_observed_shape_keeps_the_stem_and_the_cap_and_drops_the_free_space_
     assert _inside(carved, [CENTRE[0] + 0.022, CENTRE[1], 0.045])  # the cap
     volume = lambda s: sum(ConvexHull(p).volume for p in s.pieces)  # noqa: E731
     assert volume(carved) < 0.8 * volume(column)
+    assert carved.carved and not column.carved
     assert carved.height == pytest.approx(column.height)
     assert np.allclose(carved.centre, column.centre)  # the estimate's centre of mass is the map's
 

@@ -68,12 +68,15 @@ class ObservedShape:
         centre: the centre of mass the ε metric uses (module docstring).
         table_z: the table's height, m.
         block: the block edge, m.
+        carved: the pieces are the carved columns' layers (the views saw free space under the object and
+            the shape kept within its piece budget), not the plain column solid.
     """
 
     pieces: tuple[np.ndarray, ...]
     centre: np.ndarray
     table_z: float
     block: float
+    carved: bool = False
 
     @property
     def X_WO(self) -> RigidTransform:
@@ -128,7 +131,8 @@ def observed_shape(height_map: table_top.HeightMap, min_cells: int = 3) -> Obser
         return None
     h = height_map.filled_heights()
     f = block_factor(height_map, h > 0)
-    if height_map.carved is None:
+    carved = height_map.carved is not None
+    if not carved:
         layers = _layers(h, None, f)
         strips = _layer_strips(layers, LEVEL, BOTTOM_LEVEL)
     else:  # coarser merging, then larger blocks that keep every hole, until the closing's cost is bounded
@@ -141,7 +145,7 @@ def observed_shape(height_map: table_top.HeightMap, min_cells: int = 3) -> Obser
             if len(strips) <= MAX_CARVED_PIECES:
                 break
         else:  # no carved shape within the budget keeps the holes: the column solid
-            f_times, layers = 1, _layers(h, None, f)
+            f_times, layers, carved = 1, _layers(h, None, f), False
             strips = _layer_strips(layers, LEVEL, BOTTOM_LEVEL)
         f *= f_times
     block = f * height_map.cell
@@ -160,7 +164,8 @@ def observed_shape(height_map: table_top.HeightMap, min_cells: int = 3) -> Obser
         pieces.append(np.unique(np.vstack(corners), axis=0))
     if not pieces:
         return None
-    return ObservedShape(tuple(pieces), np.asarray(whole.centre, float), float(height_map.table_height), block)
+    return ObservedShape(tuple(pieces), np.asarray(whole.centre, float), float(height_map.table_height), block,
+                         carved)
 
 
 def _per_block(values: np.ndarray, present: np.ndarray, f: int) -> tuple[np.ndarray, np.ndarray]:

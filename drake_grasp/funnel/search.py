@@ -6,8 +6,9 @@ stable grasp. Its Fig. 4 measures that funnel quasi-statically (the hand approac
 closes with breakaway; the contacts are scored with the ε metric) and averages ε over the pose errors
 (ε_mean). The search does the same at run time, with what the robot knows:
 
-* **the shape** is the one the camera saw (`observed_shape`: the table-top height map's column solid),
-  never the object's file; ε's centre of mass and torque scale are the observed shape's;
+* **the shape** is the one the camera saw (`observed_shape`: the table-top height map's column solid,
+  carved where the depth views saw free space under the object: docs/design.md §5.4r), never the
+  object's file; ε's centre of mass and torque scale are the observed shape's;
 * **the candidates** are each grasp's pose (`grasps.plan_compliant_grasp`, from the estimate) varied:
   its near-symmetric turns about the approach (`grasps.NEAR_SYMMETRIES`: each scored on its own), a yaw
   of ±`yaw_deg`, a palm raised by `raise_m`, and a tilt of ±`tilt_deg` about the palm's y axis (the
@@ -139,6 +140,7 @@ class FunnelSearch:
     neighbourhood: int
     pieces: int
     wall_time: float
+    carved: bool = False  # the shape was the carved column solid (`ObservedShape.carved`)
 
     @property
     def grasps(self) -> int:
@@ -148,7 +150,7 @@ class FunnelSearch:
         """Plain numbers for the record."""
         return {
             "spacing": self.spacing, "neighbourhood": self.neighbourhood, "pieces": self.pieces,
-            "grasps_closed": self.grasps, "wall_time": self.wall_time,
+            "carved": self.carved, "grasps_closed": self.grasps, "wall_time": self.wall_time,
             "funnels": {g.value: {"primitive": f.primitive, "best": f.best.epsilon_mean,
                                   "widest": max(c.epsilon_mean for c in f.candidates),
                                   "variant": f.best.variant.to_dict(), "candidates": len(f.candidates)}
@@ -258,4 +260,4 @@ def search(shape: ObservedShape, estimate: ObjectEstimate, grasps, params: Funne
     scorer = FunnelScorer(shape)
     spacing = neighbourhood_spacing(uncertainty_centre, params)
     funnels = {g: search_grasp(scorer, g, estimate, spacing, params) for g in grasps}
-    return FunnelSearch(funnels, spacing, len(_RING), len(shape.pieces), time.perf_counter() - start)
+    return FunnelSearch(funnels, spacing, len(_RING), len(shape.pieces), time.perf_counter() - start, shape.carved)
