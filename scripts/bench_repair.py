@@ -59,7 +59,7 @@ except ModuleNotFoundError:  # Run from a checkout without installing the packag
 from drake_grasp.objects.repair import RepairError, closed_shells
 from drake_grasp.objects.solid import solid_of_shells
 
-MESH_CLASSES = ("shared_faces", "hull_gaps", "overlapping", "hollow", "open_caps", "holes", "non_manifold", "flipped",
+MESH_CLASSES = ("shared_faces", "hull_gaps", "overlapping", "hollow", "open_caps", "holes", "non_manifold", "pinched", "flipped",
                 "duplicated", "internal", "degenerate", "t_junctions", "everything", "millimetres", "separate", "open_sheet",
                 "gltf_binary")
 REFUSED_CLASSES = ("separate", "open_sheet")
@@ -373,6 +373,11 @@ def conclusion(records: list[dict]) -> list[str]:
         f"removed what is not manifold and much of the object with it (volume "
         f"{_error_range(records, 'MeshFix', ('non_manifold',))}; "
         f"{_error_range(records, 'MeshFix keep', ('non_manifold',))} keeping components).",
+        f"* **Pinched polycubes** (`pinched`: flush cells meeting along edges, as a union or as a soup of cubes): "
+        f"the pipeline pairs the faces around each pinched edge across their solid wedges "
+        f"({_right(records, 'pipeline', ('pinched',))} right, volume {_error_range(records, 'pipeline', ('pinched',))}); "
+        f"Manifold takes them too ({_right(records, 'Manifold', ('pinched',))}), MeshFix closes them into something "
+        f"else ({_right(records, 'MeshFix', ('pinched',))} right, volume {_error_range(records, 'MeshFix', ('pinched',))}).",
         "* **Multi-shell objects**: MeshFix with its defaults keeps only the largest component: hull sets come back "
         f"with volume {_error_range(records, 'MeshFix', ('hull_gaps',))} and one of two separate parts is dropped "
         f"without a word (volume {_error_range(records, 'MeshFix', ('separate',))}). With `remove_smallest_components=False` "

@@ -12,6 +12,7 @@ The classes (``CLASSES``):
 * a hollow object (an inner wall wound inward);
 * hull sets with 0.5-2 mm gaps (a convex decomposition written as one file);
 * overlapping shells (CAD exports: a handle's shell running into a body's);
+* a polycube of flush cells that meet along edges only (edges of four faces);
 * open caps, holes, non-manifold edges, flipped faces, duplicated faces, internal faces, degenerate
   triangles (scans, visual meshes, hand-edited files), and all of these at once in a triangle soup;
 * seams left open at T-junctions (CAD exports that refined one part and not the part it meets);
@@ -212,6 +213,45 @@ def non_manifold(out: Path, seed: int) -> ZooCase:
     faces = np.vstack([mesh.faces, [[edge[0], edge[1], len(vertices) - 1]]])
     path = _write(trimesh.Trimesh(vertices, faces, process=False), out / f"non_manifold_{seed}.obj")
     return ZooCase(path.stem, "non_manifold", path, "repaired", "", 2 * size**3)
+
+
+# Steps between cells of a pinched polycube: across a face, or diagonally in a plane (the two cells
+# then meet along an edge only).
+_FACE_STEPS = [np.array(v) for v in ((1, 0, 0), (-1, 0, 0), (0, 1, 0), (0, -1, 0), (0, 0, 1), (0, 0, -1))]
+_EDGE_STEPS = [np.array(v) for v in ((1, 1, 0), (1, -1, 0), (-1, 1, 0), (-1, -1, 0), (1, 0, 1), (-1, 0, 1),
+                                     (0, 1, 1), (0, -1, 1), (1, 0, -1), (-1, 0, -1), (0, 1, -1), (0, -1, -1))]
+
+
+def pinched(out: Path, seed: int) -> ZooCase:
+    """A polycube of flush cells some of which meet along an edge only (an edge of four faces once its
+    vertices are welded), as a voxel or CAD tool writes it: the cells' union on even seeds, each cell
+    a closed cube of its own on odd seeds, both as an STL triangle soup."""
+    from drake_grasp.objects.generated import manifold, to_trimesh
+
+    rng = _rng(seed, "pinched")
+    edge = float(rng.uniform(0.02, 0.04))
+    cells = [np.zeros(3, int), _EDGE_STEPS[int(rng.integers(len(_EDGE_STEPS)))]]  # one pinch at least
+    while len(cells) < int(rng.integers(3, 8)):
+        steps = _EDGE_STEPS if rng.random() < 0.4 else _FACE_STEPS
+        cell = cells[int(rng.integers(len(cells)))] + steps[int(rng.integers(len(steps)))]
+        if not any(np.array_equal(cell, c) for c in cells):
+            cells.append(cell)
+    cubes = [trimesh.creation.box([edge] * 3).apply_translation(edge * c) for c in cells]
+    if seed % 2 == 0:
+        m = manifold()
+        union = m.Manifold.batch_boolean([m.Manifold.cube((edge,) * 3, center=True).translate(tuple(edge * c))
+                                          for c in cells], m.OpType.Add)
+        mesh = to_trimesh(union)
+    else:
+        mesh = _concatenate(cubes)
+    path = _write(mesh, out / f"pinched_{seed}.stl")
+    # A pinch: two cells a diagonal step apart, neither of the two cells beside both of them present.
+    present = {tuple(c) for c in cells}
+    pinches = sum(1 for a in cells for step in _EDGE_STEPS if tuple(a + step) in present
+                  and not any(tuple(a + part) in present for part in np.diag(step) if part.any()))
+    if seed % 2 == 0 and pinches == 0:  # the union is a clean closed surface
+        return ZooCase(path.stem, "pinched", path, "accepted", "", len(cells) * edge**3)
+    return ZooCase(path.stem, "pinched", path, "repaired", "non-manifold edges split", len(cells) * edge**3)
 
 
 def hollow(out: Path, seed: int) -> ZooCase:
@@ -463,6 +503,7 @@ GENERATORS = {
     "open_caps": open_caps,
     "holes": holes,
     "non_manifold": non_manifold,
+    "pinched": pinched,
     "flipped": flipped,
     "duplicated": duplicated,
     "internal": internal,

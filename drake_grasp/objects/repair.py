@@ -15,8 +15,11 @@ outward-wound shells. The steps, each counted for the one-line note a user sees:
 2. drop duplicated faces: of two copies with the same winding one is kept; two copies with opposite
    windings are the wall between two cells that share that face, and both go (the cells become one
    shell);
+2b. open pinched edges: where solids meet along an edge (an edge of four faces: polycube cells that
+   touch only along an edge), the faces are paired solid by solid and each pair gets its own copy of
+   the edge (drake_grasp.objects.edge_pairing);
 3. split the rest into patches joined across manifold edges only (an edge of exactly two faces), so
-   that a fin on an edge or two solids meeting along an edge come apart;
+   that a fin on an edge comes apart;
 4. wind each patch consistently and outward (trimesh's BFS over face adjacency);
 5. close each open patch: MeshFix (pymeshfix, Attene 2010) fills its holes and removes what is not
    manifold; a patch that still encloses no volume (a sheet, a fin, an internal partition) is
@@ -42,6 +45,8 @@ import trimesh
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 from scipy.spatial import cKDTree
+
+from drake_grasp.objects.edge_pairing import open_pinched_edges
 
 # A patch encloses a solid only if its volume is at least this fraction of its convex hull's.
 MIN_FILL_FRACTION = 0.02
@@ -415,11 +420,12 @@ def _part_shells(mesh: trimesh.Trimesh, report: RepairReport, opened: list) -> l
     faces = _drop_duplicates(faces, report)
     if len(faces) == 0:
         return []
+    vertices, faces, pinched = open_pinched_edges(mesh.vertices, faces)
     patches, non_manifold = _patches(faces)
-    report.non_manifold_edges += non_manifold
+    report.non_manifold_edges += non_manifold + pinched
     shells = []
     for indices in patches:
-        patch = trimesh.Trimesh(mesh.vertices, faces[indices], process=False)
+        patch = trimesh.Trimesh(vertices, faces[indices], process=False)
         patch.remove_unreferenced_vertices()
         patch = _outward(patch, report)
         if not patch.is_watertight:
