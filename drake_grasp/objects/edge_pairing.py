@@ -97,7 +97,8 @@ def open_pinched_edges(vertices: np.ndarray, faces: np.ndarray) -> tuple[np.ndar
     edges = np.sort(directed, axis=1)
     owner = np.tile(np.arange(m), 3)
     slot = np.repeat(np.arange(3), m)  # edge k of a face runs from its corner k to corner k + 1
-    _, inverse, counts = np.unique(edges, axis=0, return_inverse=True, return_counts=True)
+    key = edges[:, 0] * (int(edges.max()) + 1) + edges[:, 1]  # one int64 per edge (fits below 2^31 vertices)
+    _, inverse, counts = np.unique(key, return_inverse=True, return_counts=True)
     inverse = inverse.ravel()
     crowded = np.flatnonzero(counts[inverse] >= 4)
     if len(crowded) == 0:
