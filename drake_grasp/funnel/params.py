@@ -23,6 +23,11 @@ class FunnelParams:
             and search away from it only when it is: the paper's thesis is that the primitive's pose
             lies in the funnel's entrance, and on the objects tried, moving a pose whose funnel was
             open to a wider one lost more holds than it won (docs/results/funnel_search.md).
+        keep_cradled_primitive: count the primitive's funnel as open, too, when the hand cradles the
+            shape there (`funnel.search.cradles`: every finger under the object's widest line, pushing
+            it up into the hand) at most of its neighbourhood's poses, though ε = 0 there: nothing
+            presses the object down, so the wrench space holds no downward force, yet under the torque
+            close such grasps lift it (docs/design.md §5.4s).
     """
 
     yaw_deg: float = 15.0
@@ -34,6 +39,7 @@ class FunnelParams:
     refine: int = 2
     min_gain: float = 0.1
     keep_open_primitive: bool = True
+    keep_cradled_primitive: bool = True
 
     def validate(self) -> None:
         for name in ("yaw_deg", "raise_m", "tilt_deg", "spacing_per_uncertainty", "min_gain"):

@@ -24,6 +24,13 @@ Each quasi-static grasp starts where the executor's approach starts (the pre-gra
 approach distance back along the palm normal), approaches until a link touches the shape or the
 table, or until the plan's target, and closes with breakaway (`quasistatic.QuasiStaticHand`).
 
+A grasp can hold what ε rates 0: where the fingers meet the shape under its widest line, pushing up
+into it (a lying bottle's lower flanks, `cradles`), and none presses it down, nothing resists lifting
+it out of the hand, so ε = 0; under the torque close the fingers lift it into the hand.
+With `keep_cradled_primitive` (the default) the primitive's pose counts as open when every finger meets
+the shape under its widest line there and most of its neighbourhood's poses cradle it or have ε > 0
+(docs/design.md §5.4s).
+
 Ties keep what the paper's algorithm would do: the primitive's own pose wins any tie (and any pose
 less than `min_gain` better than it), then the variants in the order above, then the smaller shift.
 With `keep_open_primitive` (the default) the primitive's pose is kept whenever its own funnel is open
@@ -105,6 +112,8 @@ class GraspFunnel:
     Attributes:
         grasp: the compliant grasp.
         primitive: ε_mean at the primitive's own pose.
+        cradled: the primitive's pose cradles the shape (`cradles`) and counts as open though its ε_mean
+            is 0 (`FunnelParams.keep_cradled_primitive`).
         candidates: every centre scored, widest funnel first (ties: the primitive's pose, then the
             variants' order, then the smaller shift).
         grasps: quasi-static grasps closed for this grasp.
@@ -114,6 +123,7 @@ class GraspFunnel:
     primitive: float
     candidates: tuple[Candidate, ...]
     grasps: int
+    cradled: bool = False
 
     @property
     def best(self) -> Candidate:
@@ -121,8 +131,9 @@ class GraspFunnel:
 
     @property
     def empty(self) -> bool:
-        """No pose scored has ε > 0: the funnel on the observed shape is empty."""
-        return self.best.epsilon_mean <= 0.0
+        """No pose scored has ε > 0 and the primitive's pose does not cradle the shape: the funnel on
+        the observed shape is empty."""
+        return self.best.epsilon_mean <= 0.0 and not self.cradled
 
     def ordered(self) -> list[Candidate]:
         """The candidates to try in order: widest funnel first; an empty funnel's primitive pose first."""
@@ -151,7 +162,7 @@ class FunnelSearch:
         return {
             "spacing": self.spacing, "neighbourhood": self.neighbourhood, "pieces": self.pieces,
             "carved": self.carved, "grasps_closed": self.grasps, "wall_time": self.wall_time,
-            "funnels": {g.value: {"primitive": f.primitive, "best": f.best.epsilon_mean,
+            "funnels": {g.value: {"primitive": f.primitive, "cradled": f.cradled, "best": f.best.epsilon_mean,
                                   "widest": max(c.epsilon_mean for c in f.candidates),
                                   "variant": f.best.variant.to_dict(), "candidates": len(f.candidates)}
                         for g, f in self.funnels.items()},
@@ -182,6 +193,30 @@ def variants(grasp: GraspType, params: FunnelParams) -> list[Variant]:
 
 _RING = [(i, j) for i in (-1, 0, 1) for j in (-1, 0, 1)]  # a 3 x 3 neighbourhood, the centre in the middle
 
+# A contact pushes up into the object when its normal (into the object) rises at least this much (the
+# sine of 10°): the finger is under the object's widest line there; one whose normal falls by as much
+# presses the object down.
+CRADLE_MIN_NORMAL_Z = math.sin(math.radians(10.0))
+_FINGER_LINKS = tuple(tuple(f"bh_finger_{f}_{part}" for part in ("proximal", "distal")) for f in (1, 2, 3))
+
+
+def cradles(contacts, every_finger_under: bool = False) -> bool:
+    """Whether a quasi-static grasp's contacts (`quasistatic.Contact`: link names, normals into the
+    object) cradle it: every finger touches it, no contact, the palm's included, presses it down (normal
+    z above -`CRADLE_MIN_NORMAL_Z`), and some finger pushes up into it from under its widest line (normal
+    z at least `CRADLE_MIN_NORMAL_Z`); with `every_finger_under`, every contact does. Such a grasp can
+    have ε = 0 (nothing resists lifting the object out of the hand), yet the torque close lifts the
+    object into it (docs/design.md §5.4s)."""
+    if not contacts:
+        return False
+    links = {c.link for c in contacts}
+    if not all(links & set(finger) for finger in _FINGER_LINKS):
+        return False
+    rises = [float(c.normal[2]) for c in contacts]
+    if every_finger_under:
+        return min(rises) >= CRADLE_MIN_NORMAL_Z
+    return min(rises) > -CRADLE_MIN_NORMAL_Z and max(rises) >= CRADLE_MIN_NORMAL_Z
+
 
 class FunnelScorer:
     """Closes the hand quasi-statically on one observed shape; built once per decision."""
@@ -194,13 +229,20 @@ class FunnelScorer:
         self._torque_scale = shape.max_radius
         self.closed = 0
 
-    def epsilon(self, plan: GraspPlan) -> float:
-        """ε of the plan's grasp: from its pre-grasp pose, approach until contact (or its target),
-        close with breakaway, score the contacts about the observed centre."""
+    def score(self, plan: GraspPlan) -> tuple[float, int]:
+        """(ε, how it cradles the shape: 0 not, 1 `cradles`, 2 with every finger under its widest line)
+        of the plan's grasp: from its pre-grasp pose, approach until contact (or its target), close with
+        breakaway, score the contacts about the observed centre."""
         grasp = self._hand.grasp_plan(plan, self.shape.X_WO)
         self.closed += 1
         points, normals = grasp.contact_arrays()
-        return float(grasp_quality(points, normals, FRICTION, np.zeros(3), self._torque_scale, CONE_EDGES).epsilon)
+        epsilon = float(grasp_quality(points, normals, FRICTION, np.zeros(3), self._torque_scale, CONE_EDGES).epsilon)
+        cradle = 2 if cradles(grasp.contacts, every_finger_under=True) else int(cradles(grasp.contacts))
+        return epsilon, cradle
+
+    def epsilon(self, plan: GraspPlan) -> float:
+        """ε of the plan's grasp (`score`)."""
+        return self.score(plan)[0]
 
 
 def search_grasp(scorer: FunnelScorer, grasp: GraspType, estimate: ObjectEstimate, spacing: float,
@@ -210,11 +252,14 @@ def search_grasp(scorer: FunnelScorer, grasp: GraspType, estimate: ObjectEstimat
     closed_before = scorer.closed
     cache: dict = {}
 
-    def epsilon(variant: Variant, i: int, j: int) -> float:
+    def scored_pose(variant: Variant, i: int, j: int) -> tuple[float, int]:
         key = (variant, i, j)
         if key not in cache:
-            cache[key] = scorer.epsilon(variant.shifted(i * spacing, j * spacing).apply(base))
+            cache[key] = scorer.score(variant.shifted(i * spacing, j * spacing).apply(base))
         return cache[key]
+
+    def epsilon(variant: Variant, i: int, j: int) -> float:
+        return scored_pose(variant, i, j)[0]
 
     def epsilon_mean(variant: Variant, ci: int, cj: int) -> float:
         return float(np.mean([epsilon(variant, ci + i, cj + j) for i, j in _RING]))
@@ -231,12 +276,18 @@ def search_grasp(scorer: FunnelScorer, grasp: GraspType, estimate: ObjectEstimat
             if (ci, cj) != (0, 0):
                 scored.append((epsilon_mean(variant, ci, cj), k, abs(ci) + abs(cj), (ci, cj), variant))
     primitive = scored[0][0]
+    cradled = False
+    if params.keep_cradled_primitive and primitive <= 0.0 and scored_pose(Variant(), 0, 0)[1] == 2:
+        # every finger under the widest line at the primitive's pose, and most of its neighbourhood's
+        # poses cradling the shape or with ε > 0
+        holding = sum(1 for i, j in _RING if epsilon(Variant(), i, j) > 0.0 or scored_pose(Variant(), i, j)[1])
+        cradled = 2 * holding > len(_RING)
 
     def rank(value: float) -> float:  # within `min_gain` of the primitive's pose: a tie with it
         return value if value > primitive * (1.0 + params.min_gain) else min(value, primitive)
 
     scored.sort(key=lambda s: (-rank(s[0]), s[1], s[2], s[3]))
-    if params.keep_open_primitive and primitive > 0.0:  # an open funnel at the primitive's pose: keep it,
+    if params.keep_open_primitive and (primitive > 0.0 or cradled):  # an open funnel at the primitive's pose: keep it,
         # then its plain near-symmetric turns (what the paper's algorithm executes when the arm cannot
         # reach the primitive's pose), then the poses the search moved, widest first (a stable sort)
         def kept_first(s) -> int:
@@ -250,7 +301,7 @@ def search_grasp(scorer: FunnelScorer, grasp: GraspType, estimate: ObjectEstimat
         Candidate(variant.shifted(ci * spacing, cj * spacing), value,
                   variant.shifted(ci * spacing, cj * spacing).apply(base))
         for value, _, _, (ci, cj), variant in scored)
-    return GraspFunnel(grasp, primitive, candidates, scorer.closed - closed_before)
+    return GraspFunnel(grasp, primitive, candidates, scorer.closed - closed_before, cradled)
 
 
 def search(shape: ObservedShape, estimate: ObjectEstimate, grasps, params: FunnelParams,
