@@ -63,3 +63,20 @@ def test_a_lying_cylinder_cradled_at_the_primitive_pose_keeps_it():
     # would veto the grasp (on a real camera's coarser shape, the search moved to a raised palm instead).
     assert not moved.cradled and moved.empty
     assert {c.variant for c in kept.candidates} == {c.variant for c in moved.candidates}
+
+
+def test_the_lying_objects_lie_and_come_back_the_same_from_their_seed():
+    import sys
+    from pathlib import Path
+
+    sys.path.insert(0, str(Path(__file__).parent))
+    from script_loader import load_script
+
+    lying = load_script("lying_objects")
+    first, again = lying.lying_objects(2002), lying.lying_objects(2002)
+    assert [c for c, _, _ in first] == ["bottle"] * 6 + ["cylinder"] * 6
+    for (_, _, mesh), (_, _, same) in zip(first, again):
+        assert np.array_equal(mesh.vertices, same.vertices)
+        assert mesh.is_watertight and mesh.extents[0] == max(mesh.extents)  # its axis along x: lying
+        assert abs(mesh.extents[1] - mesh.extents[2]) < 1e-6  # round across
+    assert not np.array_equal(first[0][2].vertices, lying.lying_objects(2001)[0][2].vertices)
