@@ -82,3 +82,15 @@ def test_a_manifold_mesh_comes_back_unchanged():
     sphere = trimesh.creation.icosphere(subdivisions=2)
     vertices, faces, opened = open_pinched_edges(sphere.vertices, sphere.faces)
     assert opened == 0 and np.array_equal(faces, sphere.faces) and np.array_equal(vertices, sphere.vertices)
+
+
+def test_a_voxel_soup_opens_into_closed_cells_of_its_exact_volume():
+    # 8 x 8 x 3 cells, about 60 % present, each a closed cube of its own (as a voxel exporter writes a
+    # soup): edges of four, six and eight faces, faces shared in one plane with other triangulations.
+    rng = np.random.default_rng(3)
+    cells = [(i, j, k) for i in range(8) for j in range(8) for k in range(3) if rng.random() < 0.6]
+    mesh = _welded([_cube(c) for c in cells])
+    vertices, faces, opened = open_pinched_edges(mesh.vertices, mesh.faces)
+    result = trimesh.Trimesh(vertices, faces, process=False)
+    assert opened > len(cells) and result.is_watertight and result.is_winding_consistent
+    assert result.volume == pytest.approx(len(cells) * EDGE**3, rel=1e-9)

@@ -37,51 +37,51 @@ from scipy.sparse.csgraph import connected_components
 COPLANAR_ANGLE = 1e-6
 
 
-def _pairing(vertices: np.ndarray, faces: np.ndarray, a: int, b: int, owners: np.ndarray) -> list | None:
-    """Pairs of face indices across the solid wedges at edge a-b, or None where they do not
-    alternate (the edge is then left alone)."""
-    if len(owners) < 4 or len(owners) % 2:
-        return None
+def _pairings(vertices: np.ndarray, faces: np.ndarray, a: np.ndarray, b: np.ndarray,
+              owners: np.ndarray) -> np.ndarray:
+    """For E edges a-b of k faces each (`owners`, E × k face indices, k even, at least 4): (E, k/2, 2)
+    the pairs of faces across the solid wedges of each edge, as positions in its row of `owners`, with
+    -1 where an edge's faces do not alternate (that edge is then left alone). All edges at once: a
+    voxel soup has thousands."""
+    count, k = owners.shape
+    bad = np.zeros(count, bool)
     start = vertices[a]
     along = vertices[b] - start
-    length = float(np.linalg.norm(along))
-    if length <= 0.0:
-        return None
-    d = along / length
-    angles, solid_ahead = [], []
-    reference = None
-    for face in owners:
-        corners = faces[face]
-        third = corners[(corners != a) & (corners != b)]
-        if len(third) != 1:
-            return None
-        u = vertices[third[0]] - start
-        u = u - (u @ d) * d
-        norm = float(np.linalg.norm(u))
-        if norm <= 0.0:
-            return None
-        u /= norm
-        if reference is None:
-            reference = u
-        angle = float(np.arctan2(np.cross(reference, u) @ d, reference @ u)) % (2.0 * np.pi)
-        angles.append(0.0 if angle > 2.0 * np.pi - COPLANAR_ANGLE else angle)
-        p = vertices[corners]
-        normal = np.cross(p[1] - p[0], p[2] - p[0])
-        side = float(normal @ np.cross(d, u))
-        if side == 0.0:
-            return None
-        solid_ahead.append(side < 0.0)  # the normal points back, out of the solid: the solid lies ahead
-    angles = np.asarray(angles)
-    solid_ahead = np.asarray(solid_ahead)
-    # Ties (one plane) ordered so that a face whose solid lies back comes first.
+    length = np.linalg.norm(along, axis=1)
+    bad |= length <= 0.0
+    d = along / np.where(length > 0.0, length, 1.0)[:, None]
+    corners = faces[owners]  # E × k × 3
+    is_end = (corners == a[:, None, None]) | (corners == b[:, None, None])
+    bad |= np.any(np.count_nonzero(~is_end, axis=2) != 1, axis=1)
+    third = np.where(~is_end, corners, 0).max(axis=2)  # the one corner that is neither end
+    u = vertices[third] - start[:, None, :]
+    u -= np.einsum("ekc,ec->ek", u, d)[:, :, None] * d[:, None, :]
+    norm = np.linalg.norm(u, axis=2)
+    bad |= np.any(norm <= 0.0, axis=1)
+    u /= np.where(norm > 0.0, norm, 1.0)[:, :, None]
+    reference = u[:, :1, :]
+    sine = np.einsum("ekc,ec->ek", np.cross(reference, u), d)
+    cosine = np.einsum("ekc,ekc->ek", np.broadcast_to(reference, u.shape), u)
+    angles = np.arctan2(sine, cosine) % (2.0 * np.pi)
+    angles = np.where(angles > 2.0 * np.pi - COPLANAR_ANGLE, 0.0, angles)
+    p = vertices[corners]  # E × k × 3 × 3
+    normals = np.cross(p[:, :, 1] - p[:, :, 0], p[:, :, 2] - p[:, :, 0])
+    side = np.einsum("ekc,ekc->ek", normals, np.cross(d[:, None, :], u))
+    bad |= np.any(side == 0.0, axis=1)
+    solid_ahead = side < 0.0  # the normal points back, out of the solid: the solid lies ahead
+    # Sorted by angle about the edge; ties (one plane) with a face whose solid lies back first.
     rounded = np.round(angles / COPLANAR_ANGLE)
-    order = np.lexsort((solid_ahead, rounded))
-    ahead = solid_ahead[order]
-    first = int(np.argmax(ahead))
-    order, ahead = np.roll(order, -first), np.roll(ahead, -first)
-    if not (np.all(ahead[0::2]) and not np.any(ahead[1::2])):
-        return None
-    return [(int(owners[order[i]]), int(owners[order[i + 1]])) for i in range(0, len(order), 2)]
+    rows = np.repeat(np.arange(count), k)
+    order = np.lexsort((solid_ahead.ravel(), rounded.ravel(), rows)).reshape(count, k) - (np.arange(count) * k)[:, None]
+    ahead = np.take_along_axis(solid_ahead, order, axis=1)
+    first = np.argmax(ahead, axis=1)  # start at a face whose solid lies ahead
+    rolled = (np.arange(k)[None, :] + first[:, None]) % k
+    order = np.take_along_axis(order, rolled, axis=1)
+    ahead = np.take_along_axis(ahead, rolled, axis=1)
+    bad |= ~(np.all(ahead[:, 0::2], axis=1) & ~np.any(ahead[:, 1::2], axis=1))
+    pairs = np.stack([order[:, 0::2], order[:, 1::2]], axis=2)
+    pairs[bad] = -1
+    return pairs
 
 
 def open_pinched_edges(vertices: np.ndarray, faces: np.ndarray) -> tuple[np.ndarray, np.ndarray, int]:
@@ -108,22 +108,27 @@ def open_pinched_edges(vertices: np.ndarray, faces: np.ndarray) -> tuple[np.ndar
     manifold = np.flatnonzero(counts[inverse] == 2)
     order = np.argsort(inverse[manifold], kind="stable")
     rows.append(manifold[order].reshape(-1, 2))
-    opened, pinched = 0, set()
-    groups = {}
-    for occurrence in crowded:
-        groups.setdefault(int(inverse[occurrence]), []).append(int(occurrence))
-    for occurrences in groups.values():
-        occurrences = np.asarray(occurrences)
-        a, b = edges[occurrences[0]]
-        pairs = _pairing(vertices, faces, int(a), int(b), owner[occurrences])
-        if pairs is None:
-            # Left as it was: all its faces stay joined around its vertices (no copy is made).
-            rows.append(np.column_stack([np.repeat(occurrences[0], len(occurrences) - 1), occurrences[1:]]))
-            continue
-        at = {int(owner[o]): int(o) for o in occurrences}
-        rows.append(np.array([(at[f], at[g]) for f, g in pairs]))
-        opened += 1
-        pinched.update((int(a), int(b)))
+    # The crowded edges' occurrences, edge by edge, then the edges grouped by their number of faces.
+    by_edge = crowded[np.argsort(inverse[crowded], kind="stable")]
+    _, starts, sizes = np.unique(inverse[by_edge], return_index=True, return_counts=True)
+    opened, pinched = 0, []
+    for k in np.unique(sizes):
+        occurrences = by_edge[starts[sizes == k][:, None] + np.arange(k)[None, :]]  # E × k
+        if k % 2:
+            pairs = np.full((len(occurrences), k // 2, 2), -1)
+        else:
+            ends = edges[occurrences[:, 0]]
+            pairs = _pairings(vertices, faces, ends[:, 0], ends[:, 1], owner[occurrences])
+        paired = pairs[:, 0, 0] >= 0
+        alone = occurrences[~paired]
+        if len(alone):  # all their faces stay joined around their vertices (no copy is made)
+            rows.append(np.column_stack([np.repeat(alone[:, 0], k - 1), alone[:, 1:].ravel()]))
+        if np.any(paired):
+            joined, positions = occurrences[paired], pairs[paired]
+            rows.append(np.stack([np.take_along_axis(joined, positions[:, :, 0], axis=1),
+                                  np.take_along_axis(joined, positions[:, :, 1], axis=1)], axis=2).reshape(-1, 2))
+            opened += len(joined)
+            pinched.append(edges[joined[:, 0]].ravel())
     if not opened:
         return vertices, faces, 0
     joins = np.concatenate(rows)
@@ -138,14 +143,15 @@ def open_pinched_edges(vertices: np.ndarray, faces: np.ndarray) -> tuple[np.ndar
     graph = coo_matrix((np.ones(len(left)), (left, right)), shape=(3 * m, 3 * m))
     _, fan = connected_components(graph, directed=False)
     corner_vertex = faces.ravel()
-    new_faces = faces.ravel().copy()
-    extra = []
-    for vertex in sorted(pinched):
-        corners = np.flatnonzero(corner_vertex == vertex)
-        labels = np.unique(fan[corners])
-        for label in labels[1:]:
-            new_faces[corners[fan[corners] == label]] = len(vertices) + len(extra)
-            extra.append(vertex)
-    if extra:
-        vertices = np.vstack([vertices, vertices[np.asarray(extra)]])
+    new_faces = corner_vertex.copy()
+    at_pinch = np.flatnonzero(np.isin(corner_vertex, np.unique(np.concatenate(pinched))))
+    # Each (vertex, fan) pair at a pinched vertex: the first fan of each vertex keeps it, the others
+    # get copies (pairs sorted by vertex, then fan).
+    pairs, which = np.unique(np.column_stack([corner_vertex[at_pinch], fan[at_pinch]]), axis=0, return_inverse=True)
+    first = np.concatenate([[True], pairs[1:, 0] != pairs[:-1, 0]])
+    ids = pairs[:, 0].copy()
+    ids[~first] = len(vertices) + np.arange(np.count_nonzero(~first))
+    new_faces[at_pinch] = ids[which.ravel()]
+    if np.any(~first):
+        vertices = np.vstack([vertices, vertices[pairs[~first, 0]]])
     return vertices, new_faces.reshape(-1, 3), opened
