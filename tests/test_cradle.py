@@ -80,3 +80,19 @@ def test_the_lying_objects_lie_and_come_back_the_same_from_their_seed():
         assert mesh.is_watertight and mesh.extents[0] == max(mesh.extents)  # its axis along x: lying
         assert abs(mesh.extents[1] - mesh.extents[2]) < 1e-6  # round across
     assert not np.array_equal(first[0][2].vertices, lying.lying_objects(2001)[0][2].vertices)
+
+
+def test_funnel_widths_are_rounded_so_that_a_tie_goes_to_the_stated_order():
+    from scipy.spatial import ConvexHull
+
+    from drake_grasp.funnel.search import EPSILON_DIGITS
+
+    shape = observed_shape(_lying_cylinder())
+    estimate = ObjectEstimate(center=np.array([*CENTRE, 0.02]), R_WB=np.eye(3), size=np.array([0.08, 0.04, 0.04]),
+                              principal_axis=np.array([1.0, 0.0, 0.0]), table_z=0.0)
+    params = FunnelParams(keep_cradled_primitive=False)
+    first = search(shape, estimate, [GraspType.BOX], params, 0.0025).funnels[GraspType.BOX]
+    ConvexHull(np.random.default_rng(0).normal(size=(40, 6)), qhull_options="QJ")  # qhull's state moves on
+    again = search(shape, estimate, [GraspType.BOX], params, 0.0025).funnels[GraspType.BOX]
+    assert [(c.variant, c.epsilon_mean) for c in first.candidates] == [(c.variant, c.epsilon_mean) for c in again.candidates]
+    assert all(c.epsilon_mean == round(c.epsilon_mean, EPSILON_DIGITS) for c in first.candidates)

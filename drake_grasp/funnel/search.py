@@ -193,6 +193,12 @@ def variants(grasp: GraspType, params: FunnelParams) -> list[Variant]:
 
 _RING = [(i, j) for i in (-1, 0, 1) for j in (-1, 0, 1)]  # a 3 x 3 neighbourhood, the centre in the middle
 
+# ε and ε_mean are rounded to this many decimals, so that equal funnels tie exactly and the tie goes to
+# the order the module states: qhull's joggled fallback (`quality`) moves ε by up to about 1e-10, and by
+# amounts that depend on the hulls the process computed before, which made a tie's winner depend on
+# which trials a worker had run.
+EPSILON_DIGITS = 9
+
 # A contact pushes up into the object when its normal (into the object) rises at least this much (the
 # sine of 10°): the finger is under the object's widest line there; one whose normal falls by as much
 # presses the object down.
@@ -238,7 +244,7 @@ class FunnelScorer:
         points, normals = grasp.contact_arrays()
         epsilon = float(grasp_quality(points, normals, FRICTION, np.zeros(3), self._torque_scale, CONE_EDGES).epsilon)
         cradle = 2 if cradles(grasp.contacts, every_finger_under=True) else int(cradles(grasp.contacts))
-        return epsilon, cradle
+        return round(epsilon, EPSILON_DIGITS), cradle
 
     def epsilon(self, plan: GraspPlan) -> float:
         """ε of the plan's grasp (`score`)."""
@@ -262,7 +268,7 @@ def search_grasp(scorer: FunnelScorer, grasp: GraspType, estimate: ObjectEstimat
         return scored_pose(variant, i, j)[0]
 
     def epsilon_mean(variant: Variant, ci: int, cj: int) -> float:
-        return float(np.mean([epsilon(variant, ci + i, cj + j) for i, j in _RING]))
+        return round(float(np.mean([epsilon(variant, ci + i, cj + j) for i, j in _RING])), EPSILON_DIGITS)
 
     order = variants(grasp, params)
     scored = []  # (ε_mean, variant order, shift size, centre, variant)
