@@ -236,14 +236,13 @@ def pinched(out: Path, seed: int) -> ZooCase:
         cell = cells[int(rng.integers(len(cells)))] + steps[int(rng.integers(len(steps)))]
         if not any(np.array_equal(cell, c) for c in cells):
             cells.append(cell)
-    cubes = [trimesh.creation.box([edge] * 3).apply_translation(edge * c) for c in cells]
     if seed % 2 == 0:
         m = manifold()
         union = m.Manifold.batch_boolean([m.Manifold.cube((edge,) * 3, center=True).translate(tuple(edge * c))
                                           for c in cells], m.OpType.Add)
         mesh = to_trimesh(union)
     else:
-        mesh = _concatenate(cubes)
+        mesh = _concatenate([trimesh.creation.box([edge] * 3).apply_translation(edge * c) for c in cells])
     path = _write(mesh, out / f"pinched_{seed}.stl")
     # A pinch: two cells a diagonal step apart, neither of the two cells beside both of them present.
     present = {tuple(c) for c in cells}

@@ -46,7 +46,7 @@ from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 from scipy.spatial import cKDTree
 
-from drake_grasp.objects.edge_pairing import open_pinched_edges
+from drake_grasp.objects.edge_pairing import manifold_pairs, open_pinched_edges, unique_rows as _unique_rows
 
 # A patch encloses a solid only if its volume is at least this fraction of its convex hull's.
 MIN_FILL_FRACTION = 0.02
@@ -63,22 +63,6 @@ MAX_HOLES_PERIMETER = 0.05
 # A vertex this close to a face's open edge (a fraction of the mesh's largest extent: 0.1 µm in 10 cm)
 # lies on it: a T-junction, where one side of a seam was subdivided and the other not.
 T_JUNCTION_TOLERANCE = 1e-6
-
-
-def _unique_rows(rows: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """(inverse, counts) of the distinct rows of an integer array of 2 or 3 columns (vertex
-    indices): rows packed into one int64 key where they fit (np.unique on one column is many
-    times faster than on rows)."""
-    rows = np.asarray(rows, np.int64)
-    base = int(rows.max(initial=0)) + 1
-    if base ** rows.shape[1] < 2**62:
-        key = rows[:, 0]
-        for column in range(1, rows.shape[1]):
-            key = key * base + rows[:, column]
-        _, inverse, counts = np.unique(key, return_inverse=True, return_counts=True)
-    else:
-        _, inverse, counts = np.unique(rows, axis=0, return_inverse=True, return_counts=True)
-    return inverse.ravel(), counts
 
 
 class RepairError(ValueError):
@@ -156,9 +140,7 @@ def _patches(faces: np.ndarray) -> tuple[list[np.ndarray], int]:
     edges = _face_edges(faces)
     owner = np.tile(np.arange(len(faces)), 3)
     inverse, counts = _unique_rows(edges)
-    manifold = counts[inverse] == 2
-    order = np.argsort(inverse[manifold], kind="stable")
-    pairs = owner[manifold][order].reshape(-1, 2)
+    pairs = owner[manifold_pairs(inverse, counts)]
     n = len(faces)
     graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(n, n))
     count, labels = connected_components(graph, directed=False)
@@ -268,10 +250,9 @@ def _consistent_winding(faces: np.ndarray) -> np.ndarray:
     edges = np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]])
     owner = np.tile(np.arange(len(faces)), 3)
     inverse, counts = _unique_rows(np.sort(edges, axis=1))
-    manifold = counts[inverse] == 2
-    order = np.argsort(inverse[manifold], kind="stable")
-    pairs = owner[manifold][order].reshape(-1, 2)
-    directed = edges[manifold][order].reshape(-1, 2, 2)
+    occurrences = manifold_pairs(inverse, counts)
+    pairs = owner[occurrences]
+    directed = edges[occurrences]
     # Two faces agree when they traverse their shared edge in opposite directions.
     disagree = (directed[:, 0, 0] == directed[:, 1, 0]).astype(float) + 1.0  # 1 agree, 2 disagree
     n = len(faces)
