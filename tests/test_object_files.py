@@ -219,6 +219,37 @@ def test_an_mjcf_object_beside_its_scene_is_the_free_body(tmp_path):
         resolve_user_object(str(two))
 
 
+def test_an_mjcf_object_of_rotated_geoms_loads_without_its_visual_mesh(tmp_path):
+    """LIBERO's and robosuite's object files build the collision body of boxes turned by ``quat``
+    (MuJoCo's w, x, y, z) and name a visual-only mesh (``contype="0" conaffinity="0"``) that
+    collections often ship apart: the quats turn the boxes, the missing visual mesh is not needed,
+    and a quat of zero is refused in one line."""
+    turned = '<geom type="box" size="0.05 0.01 0.02" quat="0.70711 0 0 0.70711" pos="0 0 0"/>'
+    plain = '<geom type="box" size="0.01 0.01 0.01" pos="0 0.06 0"/>'
+    visual = '<geom type="mesh" mesh="look" contype="0" conaffinity="0" group="1"/>'
+    body = f'<body name="object">{visual}{turned}{plain}</body>'
+    path = tmp_path / "libero_like.xml"
+    path.write_text(f'<mujoco><asset><mesh file="visual/missing.msh" name="look"/></asset>'
+                    f'<worldbody><body>{body}</body></worldbody></mujoco>')
+    spec = resolve_user_object(str(path))
+    # Turned a quarter about z, the 10 × 2 × 4 cm box runs along y, from -5 to +5 cm; the cube's far
+    # side is at 7 cm: 12 cm along y, 2 cm across, 4 cm tall.
+    np.testing.assert_allclose(sorted(spec.extents), [0.02, 0.04, 0.12], atol=1e-4)
+    zero = tmp_path / "zero_quat.xml"
+    zero.write_text(f'<mujoco><worldbody><body>{turned.replace("0.70711 0 0 0.70711", "0 0 0 0")}'
+                    "</body></worldbody></mujoco>")
+    with pytest.raises(ObjectError, match="quat .* is zero"):
+        resolve_user_object(str(zero))
+    # A body's geoms 2 cm apart (a bottle's cap boxed apart from its body, LIBERO's salad dressing) are
+    # one rigid body, as the file declares, where a bare mesh of two parts is refused.
+    apart = tmp_path / "apart.xml"
+    apart.write_text('<mujoco><worldbody><body><geom type="box" size="0.02 0.02 0.02"/>'
+                     '<geom type="box" size="0.01 0.01 0.01" pos="0.05 0 -0.01"/></body></worldbody></mujoco>')
+    spec, notes = _load(type("Case", (), {"path": apart, "scale": 1.0}))
+    np.testing.assert_allclose(sorted(spec.extents), [0.04, 0.04, 0.08], atol=1e-4)
+    assert any("one rigid body" in note for note in notes)
+
+
 def test_the_note_of_a_joined_hull_set_gives_the_widest_gap_it_bridged(zoo):
     (gaps,) = [c for c in zoo if c.defect == "hull_gaps"]
     _, notes = _load(gaps)

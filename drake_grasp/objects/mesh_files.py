@@ -451,19 +451,23 @@ def object_from_triangles(
     largest_component: bool = False,
     join_gap: float | None = None,
     inertia=None,
+    one_body: bool = False,
 ) -> ObjectSpec:
     """The object a file's triangles describe (metres, in the file's frame), as
     :func:`object_from_mesh` makes it: `label` names the file in messages, `stem` names the model,
     `digest` (the content's hash) keys the cached decomposition, `source` is recorded. `inertia`,
     if given, is a function (volume, centroid, unit inertia, mass) → (mass, centroid, unit inertia)
-    that replaces the mass properties computed from the solid (a model file's checked inertial)."""
+    that replaces the mass properties computed from the solid (a model file's checked inertial).
+    `one_body`: the triangles are the geoms of one body a model file declares rigid, so parts
+    farther apart than the join gap are its parts, not an error (:func:`_user_solid`)."""
     if len(mesh.faces) > MAX_FACES:  # Said first: what follows takes a while on such a mesh.
         warnings.warn(f"{label}: {len(mesh.faces):,} faces; simplifying to {MAX_FACES:,} for contact and rendering",
                       MeshNote, stacklevel=2)
     if not largest_component:  # Refused before the repair (kept parts may still make it graspable).
         sizes.check_size(mesh.vertices[np.unique(mesh.faces)], label, scale, warn=False)
-    solid_key = hashlib.sha256(f"{digest}|{scale!r}|{join_gap!r}|{largest_component}".encode()).hexdigest()[:24]
-    mesh = _cached_solid(mesh, label, solid_key, join_gap, largest_component)
+    solid_key = hashlib.sha256((f"{digest}|{scale!r}|{join_gap!r}|{largest_component}"
+                                + ("|one-body" if one_body else "")).encode()).hexdigest()[:24]
+    mesh = _cached_solid(mesh, label, solid_key, join_gap, largest_component, one_body)
     sizes.check_size(mesh.vertices, label, scale)
     settings = (f"{scale!r}|{max_pieces}|{COACD_THRESHOLD!r}|{CONVEXITY_TOLERANCE!r}|{largest_component}|{MAX_FACES}"
                 f"|{join_gap!r}")

@@ -6,9 +6,11 @@ body; a free joint is allowed; beside a scene welded to the world, the one free 
 `_the_object_body`), their poses, MuJoCo's defaults (``<default>`` classes), ``<include>``d files, the
 compiler's ``meshdir``/``assetdir`` and ``angle``, mesh ``scale``, and each geom's ``mass`` or
 ``density`` (MuJoCo's default 1000 kg/m³) or the body's ``<inertial>``. Collision geoms are those
-MuJoCo would collide (``contype`` or ``conaffinity`` non-zero); if none, every geom. The geoms become
-one mesh in the body frame that goes through the same repair and joining as a mesh file
-(:mod:`drake_grasp.objects.mesh_files`), and the file's inertial is checked
+MuJoCo would collide (``contype`` or ``conaffinity`` non-zero); if none, every geom; only their mesh
+files are read (a visual-only mesh may be missing). The geoms become one mesh in the body frame that
+goes through the same repair and joining as a mesh file (:mod:`drake_grasp.objects.mesh_files`); the
+file declares them one rigid body, so parts apart are its parts, as in a URDF's link. The file's
+inertial is checked
 (:mod:`drake_grasp.objects.inertia_checks`). Split from :mod:`drake_grasp.objects.model_files`, which
 names it among the model-file loaders.
 """
@@ -58,8 +60,10 @@ def _geom_name(geom: dict) -> str:
 def _mjcf_rotation(element, degrees: bool, label: str) -> np.ndarray:
     """The rotation an MJCF element's quat, axisangle, euler (xyz) or zaxis gives (3×3)."""
     if element.get("quat") is not None:
-        w, x, y, z = _floats(element.get("quat"), 4, label, f"{element.tag} quat")
-        return RotationMatrix(_quaternion(w, x, y, z)).matrix()
+        q = _floats(element.get("quat"), 4, label, f"{element.tag} quat")
+        if np.linalg.norm(q) < 1e-9:
+            raise ObjectError(f"{label}: {element.tag} quat {element.get('quat')!r} is zero, not a rotation")
+        return trimesh.transformations.quaternion_matrix(q / np.linalg.norm(q))[:3, :3]  # (w, x, y, z) as MJCF
     if element.get("axisangle") is not None:
         ax, ay, az, angle = _floats(element.get("axisangle"), 4, label, f"{element.tag} axisangle")
         angle = math.radians(angle) if degrees else angle
@@ -72,13 +76,6 @@ def _mjcf_rotation(element, degrees: bool, label: str) -> np.ndarray:
         z = _floats(element.get("zaxis"), 3, label, f"{element.tag} zaxis")
         return trimesh.geometry.align_vectors([0, 0, 1], z / np.linalg.norm(z))[:3, :3]
     return np.eye(3)
-
-
-def _quaternion(w, x, y, z):
-    from pydrake.common.eigen_geometry import Quaternion
-
-    q = np.array([w, x, y, z], float)
-    return Quaternion(q / np.linalg.norm(q))
 
 
 def _mjcf_defaults(root) -> dict:
@@ -100,14 +97,22 @@ def _mjcf_defaults(root) -> dict:
 
 
 def _geom_mesh(geom: dict, meshes: dict, label: str) -> trimesh.Trimesh:
-    """One MJCF geom as a closed triangle mesh in its own frame (m)."""
+    """One MJCF geom as a closed triangle mesh in its own frame (m). `meshes` maps an asset's name to
+    its file and scale; the file is read here, so that a mesh no chosen geom uses (a visual-only one,
+    which object collections often ship apart) is never needed."""
     kind = geom.get("type", "sphere")
     size = _floats(geom.get("size", "0 0 0"), None, label, f"{_geom_name(geom)} size")
     if kind == "mesh":
         name = geom.get("mesh")
         if name not in meshes:
             raise ObjectError(f"{label}: geom names mesh {name!r}, which the file's assets do not define")
-        return meshes[name].copy()
+        mesh_path, scale = meshes[name]
+        if not mesh_path.is_file():
+            raise ObjectError(f"{label}: mesh {name!r}: {mesh_path} not found")
+        loaded = read_triangles(mesh_path, f"{label}: mesh {name!r}: {mesh_path.name}")
+        if scale is not None:
+            loaded.apply_transform(np.diag([*scale, 1.0]))
+        return loaded
     if kind == "box":
         return trimesh.creation.box(2.0 * size[:3])
     if kind == "sphere":
@@ -215,16 +220,8 @@ def _read_mjcf(path: Path, label: str) -> tuple[trimesh.Trimesh, float, tuple | 
             file = mesh.get("file")
             if file is None:
                 raise ObjectError(f"{label}: a mesh asset without a file (inline vertices are not supported)")
-            mesh_path = meshdir / file
             name = mesh.get("name", Path(file).stem)
-            if not mesh_path.is_file():
-                raise ObjectError(f"{label}: mesh {name!r}: {mesh_path} not found")
-            loaded = read_triangles(mesh_path, f"{label}: mesh {name!r}: {mesh_path.name}")
-            scale = _floats(mesh.get("scale"), 3, label, f"mesh {name!r} scale")
-            if scale is not None:
-                loaded.apply_transform(np.diag([*scale, 1.0]))
-            meshes[name] = loaded
-            digest.update(mesh_path.read_bytes())
+            meshes[name] = (meshdir / file, _floats(mesh.get("scale"), 3, label, f"mesh {name!r} scale"))
     worldbodies = root.findall("worldbody")  # several, once included files are in: MuJoCo merges them
     if not worldbodies:
         raise ObjectError(f"{label}: the file has no <worldbody>")
@@ -261,12 +258,10 @@ def _read_mjcf(path: Path, label: str) -> tuple[trimesh.Trimesh, float, tuple | 
             collides = geom.get("contype", "1") != "0" or geom.get("conaffinity", "1") != "0"
             if element.get("fromto") is not None:
                 raise ObjectError(f"{label}: geoms given by 'fromto' are not supported; give pos and quat")
-            mesh = _geom_mesh(geom, meshes, label)
             X_BG = np.eye(4)
             X_BG[:3, :3] = _mjcf_rotation(element, degrees, label)
             X_BG[:3, 3] = _floats(geom.get("pos", "0 0 0"), 3, label, f"{_geom_name(geom)} pos")
-            mesh.apply_transform(X_RB @ X_BG)
-            pieces.append((collides, mesh, geom))
+            pieces.append((collides, X_RB @ X_BG, geom))
         for child in body.findall("body"):
             X_BC = np.eye(4)
             X_BC[:3, :3] = _mjcf_rotation(child, degrees, label)
@@ -277,6 +272,10 @@ def _read_mjcf(path: Path, label: str) -> tuple[trimesh.Trimesh, float, tuple | 
     chosen = [p for p in pieces if p[0]] or pieces
     if not chosen:
         raise ObjectError(f"{label}: the body has no geoms")
+    chosen = [(collides, _geom_mesh(geom, meshes, label).apply_transform(X_RG), geom)
+              for collides, X_RG, geom in chosen]
+    for path_used in sorted({str(meshes[geom["mesh"]][0]) for _, _, geom in chosen if geom.get("type") == "mesh"}):
+        digest.update(Path(path_used).read_bytes())
     for _, mesh, geom in chosen:
         if geom.get("mass") is not None:
             mass_from_geoms += float(_floats(geom["mass"], 1, label, f"{_geom_name(geom)} mass")[0])
@@ -338,4 +337,4 @@ def object_from_mjcf(
         collision, label, path.stem, f"{digest}-mjcf{IMPORT_VERSION}", str(path.resolve()), mass=mass,
         name=name, density=density, scale=scale, max_pieces=max_pieces, closest_primitive=closest_primitive,
         rgba=rgba, friction=friction, largest_component=largest_component, join_gap=join_gap,
-        inertia=mass_properties)
+        inertia=mass_properties, one_body=True)
