@@ -30,7 +30,8 @@ import trimesh
 from drake_grasp.objects.inertia_checks import _check_choice, checked_mass_properties
 from drake_grasp.objects.mesh_files import _one_line, object_from_triangles, read_triangles
 from drake_grasp.objects.pieces import IMPORT_VERSION
-from drake_grasp.objects.spec import DEFAULT_DENSITY, DEFAULT_MAX_PIECES, MeshNote, ObjectError, YELLOW_PAPER_RGBA
+from drake_grasp.objects.spec import (DEFAULT_DENSITY, DEFAULT_MAX_PIECES, MeshNote, ObjectError, ObjectSpec,
+                                      YELLOW_PAPER_RGBA)
 
 
 _MJCF_DEFAULT_DENSITY = 1000.0  # kg/m³: MuJoCo's default geom density
