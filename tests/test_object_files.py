@@ -250,6 +250,35 @@ def test_an_mjcf_object_of_rotated_geoms_loads_without_its_visual_mesh(tmp_path)
     assert any("one rigid body" in note for note in notes)
 
 
+def test_a_model_files_convex_piece_whose_triangles_close_nothing_is_its_hull(tmp_path):
+    """pybullet's dinnerware (a plate, a pan) gives its rim as 8-vertex convex pieces whose 16
+    triangles overlap and close nothing. Bullet, MuJoCo and Drake's point contact collide a mesh as
+    its convex hull, so in a model file such a piece is its hull; a bare mesh file of it declares no
+    engine and is still refused, and so is a flat piece whose hull has no volume."""
+    import itertools
+
+    corners = trimesh.creation.box((0.04, 0.03, 0.02)).vertices
+    fan = [(0, i, j) for i, j in itertools.combinations(range(1, 8), 2)][:16]
+    piece = tmp_path / "piece.obj"
+    piece.write_text("".join(f"v {x} {y} {z}\n" for x, y, z in corners) + "".join(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in fan))
+
+    def urdf(mesh_name: str) -> str:
+        return (f'<robot name="r"><link name="l"><collision><geometry><mesh filename="{mesh_name}"/></geometry>'
+                "</collision></link></robot>")
+
+    (tmp_path / "plate.urdf").write_text(urdf("piece.obj"))
+    spec, notes = _load(type("Case", (), {"path": tmp_path / "plate.urdf", "scale": 1.0}))
+    np.testing.assert_allclose(sorted(spec.extents), [0.02, 0.03, 0.04], atol=1e-6)
+    assert any("convex hull: a convex piece" in note for note in notes)
+    with pytest.raises(ObjectError, match="sheet"):
+        resolve_user_object(str(piece))
+    flat = tmp_path / "flat.obj"
+    flat.write_text("v 0 0 0\nv 0.05 0 0\nv 0.05 0.05 0\nv 0 0.05 0\nf 1 2 3\nf 1 3 4\n")
+    (tmp_path / "flat.urdf").write_text(urdf("flat.obj"))
+    with pytest.raises(ObjectError):
+        resolve_user_object(str(tmp_path / "flat.urdf"))
+
+
 def test_the_note_of_a_joined_hull_set_gives_the_widest_gap_it_bridged(zoo):
     (gaps,) = [c for c in zoo if c.defect == "hull_gaps"]
     _, notes = _load(gaps)
