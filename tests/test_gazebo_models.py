@@ -143,6 +143,17 @@ def test_a_static_model_is_loaded_free_with_a_note(tmp_path):
     assert sorted(spec.extents) == pytest.approx([0.03, 0.03, 0.2], abs=1e-3)
 
 
+def test_a_model_in_gazebos_format_before_sdformat_1_3_is_read_as_1_3(tmp_path):
+    """Gazebo's format up to 1.2 had the root <gazebo version="1.2">, which Drake's parser does not
+    read; SDFormat 1.3 renamed only the root (pyrobosim ships its coke can in both)."""
+    path = _gazebo_model(tmp_path, "old_can", "model://old_can/meshes/block.obj")
+    trimesh.creation.box((0.03, 0.05, 0.12)).export(tmp_path / "old_can" / "meshes" / "block.obj")
+    path.write_text(path.read_text().replace('<sdf version="1.5">', '<gazebo version="1.2">').replace("</sdf>", "</gazebo>"))
+    spec, notes = _check(path)
+    assert sorted(spec.extents) == pytest.approx([0.03, 0.05, 0.12], abs=1e-3)
+    assert any("before SDFormat 1.3" in note for note in notes)
+
+
 def test_a_gazebo_model_folder_names_its_sdf_and_a_folder_without_one_is_one_line(tmp_path, capsys):
     path = _gazebo_model(tmp_path, "tin_can", "model://tin_can/meshes/can.dae")
     (tmp_path / "tin_can" / "meshes" / "can.dae").write_text(_collada(CAN_MM, unit=0.001))

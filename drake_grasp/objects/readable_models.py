@@ -24,13 +24,17 @@ import trimesh
 
 from drake_grasp.objects import packages
 from drake_grasp.objects.mesh_files import _Y_UP_SUFFIXES, _model_name, _one_line, read_triangles
-from drake_grasp.objects.spec import ObjectError, StaticModelNote, _obj_text, _write_atomically, cache_dir
+from drake_grasp.objects.spec import MeshNote, ObjectError, StaticModelNote, _obj_text, _write_atomically, cache_dir
 
 DRAKE_MESH_SUFFIXES = (".obj", ".vtk", ".gltf")  # what Drake's parser takes as mesh geometry
 CONVERTED_VERSION = 2  # in the converted OBJs' names: a change to the conversion makes new files
 _URDF_FILENAME = re.compile(r"""(\bfilename\s*=\s*)(["'])(.*?)\2""", re.DOTALL)
 _SDF_URI = re.compile(r"(<uri\s*>)([^<]*)(</uri\s*>)")
 _SDF_STATIC = re.compile(r"(<static\s*>)\s*(?:true|1)\s*(</static\s*>)", re.IGNORECASE)
+# Gazebo's own format before SDFormat 1.3 (2013) had the root <gazebo version="1.x">; 1.3 renamed it
+# <sdf>, and a model's elements read the same (pyrobosim ships its coke can in both).
+_GAZEBO_OPEN = re.compile(r"<gazebo(\s[^>]*)?>")
+_GAZEBO_CLOSE = re.compile(r"</gazebo\s*>")
 
 
 def _reference_path(reference: str, base: Path, package_map, local: dict, label: str) -> Path:
@@ -78,7 +82,8 @@ def drake_readable_model(path: Path, label: str, package_map, local: dict) -> st
     """The text of an SDFormat or URDF file with each mesh Drake cannot read converted to an OBJ
     (:func:`_converted_obj`) and named by it, and an SDFormat model that is static (Gazebo holds it
     fixed: osrf/gazebo_models' ``hammer``) made free, with a :class:`StaticModelNote`: an object to
-    grasp is one the hand can lift. None if the file needs neither (it is then parsed as it is) or is
+    grasp is one the hand can lift; a file of Gazebo's format before SDFormat 1.3 (the root
+    ``<gazebo version="1.2">``) is read as SDFormat 1.3. None if the file needs none of these (it is then parsed as it is) or is
     not XML (the parser says why).
 
     The text is parsed from a string, not from its folder, so every other path it gives is made an
@@ -90,15 +95,16 @@ def drake_readable_model(path: Path, label: str, package_map, local: dict) -> st
         root = ElementTree.parse(path).getroot()
     except (ElementTree.ParseError, OSError):
         return None
-    if root.tag not in ("robot", "sdf"):
+    legacy = root.tag == "gazebo" and (root.get("version") or "").strip().startswith("1.")
+    if root.tag not in ("robot", "sdf") and not legacy:
         return None
     meshes = {((mesh.get("filename") if root.tag == "robot" else mesh.findtext("uri")) or "").strip()
               for mesh in root.iter("mesh")}
     unreadable = {reference for reference in meshes
                   if reference and Path(reference).suffix.lower() not in DRAKE_MESH_SUFFIXES}
-    static = root.tag == "sdf" and any((model.findtext("static") or "").strip().lower() in ("true", "1")
-                                       for model in root.findall("model"))
-    if not unreadable and not static:
+    static = root.tag != "robot" and any((model.findtext("static") or "").strip().lower() in ("true", "1")
+                                         for model in root.findall("model"))
+    if not unreadable and not static and not legacy:
         return None
     base = path.resolve().parent
 
@@ -122,6 +128,10 @@ def drake_readable_model(path: Path, label: str, package_map, local: dict) -> st
     text = path.read_text(errors="replace")
     if root.tag == "robot":
         return _URDF_FILENAME.sub(attribute, text)
+    if legacy:
+        warnings.warn(f"{label}: Gazebo's format before SDFormat 1.3 (root <gazebo version=\"{root.get('version')}\">), "
+                      "read as SDFormat 1.3, whose model elements are the same", MeshNote, stacklevel=3)
+        text = _GAZEBO_CLOSE.sub("</sdf>", _GAZEBO_OPEN.sub('<sdf version="1.3">', text, count=1))
     if static:
         warnings.warn(f"{label}: the model is static in its file (Gazebo holds it fixed); loaded as a free body",
                       StaticModelNote, stacklevel=3)
