@@ -250,6 +250,22 @@ def test_an_mjcf_object_of_rotated_geoms_loads_without_its_visual_mesh(tmp_path)
     assert any("one rigid body" in note for note in notes)
 
 
+def test_mjcf_geoms_given_by_fromto_are_placed_as_mujoco_places_them(tmp_path):
+    """A capsule along x from 0 to 10 cm (radius 1 cm) and a cylinder up z from 0 to 5 cm (radius 2
+    cm): their union spans -2..11 cm in x, ±2 cm in y and -1..5 cm in z. 'fromto' on a sphere, which
+    MuJoCo refuses too, is one line."""
+    path = tmp_path / "fromto.xml"
+    path.write_text('<mujoco><worldbody><body><geom type="capsule" size="0.01" fromto="0 0 0 0.1 0 0"/>'
+                    '<geom type="cylinder" size="0.02" fromto="0 0 0 0 0 0.05"/></body></worldbody></mujoco>')
+    spec = resolve_user_object(str(path))
+    np.testing.assert_allclose(sorted(spec.extents), [0.04, 0.06, 0.13], atol=2e-3)
+    sphere = tmp_path / "sphere_fromto.xml"
+    sphere.write_text('<mujoco><worldbody><body><geom type="sphere" size="0.02" fromto="0 0 0 0 0 0.05"/>'
+                      "</body></worldbody></mujoco>")
+    with pytest.raises(ObjectError, match="'fromto' is for capsules"):
+        resolve_user_object(str(sphere))
+
+
 def test_a_model_files_convex_piece_whose_triangles_close_nothing_is_its_hull(tmp_path):
     """pybullet's dinnerware (a plate, a pan) gives its rim as 8-vertex convex pieces whose 16
     triangles overlap and close nothing. Bullet, MuJoCo and Drake's point contact collide a mesh as

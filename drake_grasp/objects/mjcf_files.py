@@ -97,6 +97,29 @@ def _mjcf_defaults(root) -> dict:
     return classes
 
 
+def _from_to(geom: dict, label: str) -> tuple[np.ndarray, dict]:
+    """The frame (4×4 in the body) and size of a geom given by ``fromto`` (x1 y1 z1 x2 y2 z2), as
+    MuJoCo reads it: the geom's z axis runs from the first point to the second, its centre between
+    them, and its half-length along z is half their distance; a capsule's or cylinder's radius is
+    its first size, a box's or ellipsoid's x and y half-sizes its first two. Robot and object
+    models often give their capsules and cylinders so."""
+    kind = geom.get("type", "sphere")
+    if kind not in ("capsule", "cylinder", "box", "ellipsoid"):
+        raise ObjectError(f"{label}: {_geom_name(geom)}: 'fromto' is for capsules, cylinders, boxes and "
+                          f"ellipsoids, not a {kind}")
+    ends = _floats(geom["fromto"], 6, label, f"{_geom_name(geom)} fromto")
+    start, end = ends[:3], ends[3:]
+    half_length = float(np.linalg.norm(end - start)) / 2.0
+    if half_length <= 0.0:
+        raise ObjectError(f"{label}: {_geom_name(geom)}: 'fromto' gives two equal points")
+    size = _floats(geom.get("size", "0 0 0"), None, label, f"{_geom_name(geom)} size")
+    widths = list(size[:1]) if kind in ("capsule", "cylinder") else list(size[:2])
+    X = np.eye(4)
+    X[:3, :3] = trimesh.geometry.align_vectors([0, 0, 1], (end - start) / (2.0 * half_length))[:3, :3]
+    X[:3, 3] = (start + end) / 2.0
+    return X, {**geom, "size": " ".join(str(v) for v in [*widths, half_length])}
+
+
 def _geom_mesh(geom: dict, meshes: dict, label: str) -> trimesh.Trimesh:
     """One MJCF geom as a closed triangle mesh in its own frame (m). `meshes` maps an asset's name to
     its file and scale; the file is read here, so that a mesh no chosen geom uses (a visual-only one,
@@ -257,11 +280,12 @@ def _read_mjcf(path: Path, label: str) -> tuple[trimesh.Trimesh, float, tuple | 
             geom = dict(defaults.get(cls, defaults["main"]))
             geom.update(element.attrib)
             collides = geom.get("contype", "1") != "0" or geom.get("conaffinity", "1") != "0"
-            if element.get("fromto") is not None:
-                raise ObjectError(f"{label}: geoms given by 'fromto' are not supported; give pos and quat")
-            X_BG = np.eye(4)
-            X_BG[:3, :3] = _mjcf_rotation(element, degrees, label)
-            X_BG[:3, 3] = _floats(geom.get("pos", "0 0 0"), 3, label, f"{_geom_name(geom)} pos")
+            if geom.get("fromto") is not None:
+                X_BG, geom = _from_to(geom, label)
+            else:
+                X_BG = np.eye(4)
+                X_BG[:3, :3] = _mjcf_rotation(element, degrees, label)
+                X_BG[:3, 3] = _floats(geom.get("pos", "0 0 0"), 3, label, f"{_geom_name(geom)} pos")
             pieces.append((collides, X_RB @ X_BG, geom))
         for child in body.findall("body"):
             X_BC = np.eye(4)
