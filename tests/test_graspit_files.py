@@ -328,7 +328,7 @@ def test_a_graspit_robot_world_or_broken_xml_is_refused_in_one_line(tmp_path, ca
 def test_a_body_file_takes_the_inertia_and_join_options_but_not_scale(tmp_path, capsys):
     path = _body(tmp_path, "<mass>300</mass><geometryFile>cube.iv</geometryFile>")
     line = _refusal(capsys, ["objects", "check", str(path), "--scale", "0.001"])
-    assert "--scale applies to mesh files" in line
+    assert "a GraspIt! body's unit is fixed (millimetres): --scale does not apply" in line
     assert cli.main(["objects", "check", str(path), "--inertia", "geometry", "--join-gap", "0.001"]) == 0
     out = capsys.readouterr().out
     assert "size 5.0 x 5.0 x 5.0 cm" in out and "mass 300.0 g" in out

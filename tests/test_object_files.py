@@ -266,6 +266,27 @@ def test_mjcf_geoms_given_by_fromto_are_placed_as_mujoco_places_them(tmp_path):
         resolve_user_object(str(sphere))
 
 
+def test_an_mjcf_model_in_millimetres_takes_scale_and_a_urdf_is_told_its_mesh_scale(tmp_path, capsys):
+    """robogym's chess pieces are MJCF over STL meshes in millimetres: the size check says --scale
+    0.001, and --scale applies to MJCF (its geoms' density × volume scaling as the cube, a geom's
+    given mass not at all). An SDF or URDF takes no --scale: its hint names the mesh's own scale."""
+    path = tmp_path / "pawn.xml"
+    path.write_text('<mujoco><worldbody><body><geom type="box" size="10 10 20"/>'
+                    '<geom type="sphere" size="5" pos="0 0 25" mass="0.002"/></body></worldbody></mujoco>')
+    assert cli.main(["objects", "check", str(path)]) == 2
+    assert "--scale 0.001" in capsys.readouterr().err
+    spec = resolve_user_object(str(path), scale=0.001)
+    assert spec.mass == pytest.approx(1000 * 0.02 * 0.02 * 0.04 + 0.002, rel=1e-6)
+    np.testing.assert_allclose(sorted(spec.extents), [0.02, 0.02, 0.05], atol=1e-4)
+    trimesh.creation.box((20.0, 30.0, 40.0)).export(tmp_path / "block.stl")
+    urdf = tmp_path / "block.urdf"
+    urdf.write_text('<robot name="r"><link name="l"><collision><geometry><mesh filename="block.stl"/></geometry>'
+                    "</collision></link></robot>")
+    assert cli.main(["objects", "check", str(urdf)]) == 2
+    (line,) = capsys.readouterr().err.strip().splitlines()
+    assert "a scale on the model's <mesh> elements 0.001" in line and "--scale" not in line
+
+
 def test_a_model_files_convex_piece_whose_triangles_close_nothing_is_its_hull(tmp_path):
     """pybullet's dinnerware (a plate, a pan) gives its rim as 8-vertex convex pieces whose 16
     triangles overlap and close nothing. Bullet, MuJoCo and Drake's point contact collide a mesh as

@@ -220,8 +220,9 @@ def _the_object_body(label: str, bodies: list) -> list:
     return free
 
 
-def _read_mjcf(path: Path, label: str) -> tuple[trimesh.Trimesh, float, tuple | None, str]:
-    """(collision mesh in the root body's frame, mass from the geoms (kg), the body's explicit
+def _read_mjcf(path: Path, label: str) -> tuple[trimesh.Trimesh, tuple[float, float], tuple | None, str]:
+    """(collision mesh in the root body's frame, the geoms' mass (kg) as (their given masses, their
+    density × volume in the file's unit, which a scale multiplies by its cube), the body's explicit
     inertial (mass, com, inertia) or None, a digest of the file, the files it includes and its
     meshes)."""
     try:
@@ -250,7 +251,8 @@ def _read_mjcf(path: Path, label: str) -> tuple[trimesh.Trimesh, float, tuple | 
     if not worldbodies:
         raise ObjectError(f"{label}: the file has no <worldbody>")
     defaults = _mjcf_defaults(root)
-    pieces, mass_from_geoms, inertial = [], 0.0, None
+    pieces, inertial = [], None
+    given_mass, density_volume = 0.0, 0.0  # kg: the geoms' own masses, and density × volume in the file's unit
     # The world's own geoms (a floor plane, say) are not the object: only bodies are.
     bodies = _the_object_body(label, [body for worldbody in worldbodies for body in worldbody.findall("body")])
 
@@ -303,13 +305,13 @@ def _read_mjcf(path: Path, label: str) -> tuple[trimesh.Trimesh, float, tuple | 
         digest.update(Path(path_used).read_bytes())
     for _, mesh, geom in chosen:
         if geom.get("mass") is not None:
-            mass_from_geoms += float(_floats(geom["mass"], 1, label, f"{_geom_name(geom)} mass")[0])
+            given_mass += float(_floats(geom["mass"], 1, label, f"{_geom_name(geom)} mass")[0])
         else:
             volume = abs(float(mesh.volume)) if mesh.is_watertight else float(mesh.convex_hull.volume)
             density = _floats(geom.get("density"), 1, label, f"{_geom_name(geom)} density")
-            mass_from_geoms += float(_MJCF_DEFAULT_DENSITY if density is None else density[0]) * volume
+            density_volume += float(_MJCF_DEFAULT_DENSITY if density is None else density[0]) * volume
     collision = trimesh.util.concatenate([mesh for _, mesh, _ in chosen])
-    return collision, mass_from_geoms, inertial, digest.hexdigest()
+    return collision, (given_mass, density_volume), inertial, digest.hexdigest()
 
 
 def object_from_mjcf(
@@ -344,8 +346,9 @@ def object_from_mjcf(
     _check_choice(label, inertia)
     if not path.is_file():
         raise ObjectError(f"{label}: file not found")
-    collision, geom_mass, inertial, digest = _read_mjcf(path, label)
+    collision, (given_mass, density_volume), inertial, digest = _read_mjcf(path, label)
     collision.apply_scale(scale)
+    geom_mass = given_mass + density_volume * scale**3  # a volume scales as the cube; a given mass does not
 
     def mass_properties(volume, centroid, unit_inertia, requested_mass):
         file_mass = inertial[0] if inertial is not None else geom_mass

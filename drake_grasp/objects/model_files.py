@@ -288,7 +288,7 @@ def object_from_sdf(
     if not pieces_B:
         raise ObjectError(f"{label}: the body has no collision geometry")
     points = np.vstack([_piece_points(piece) for piece in pieces_B])
-    sizes.check_size(points, label)
+    sizes.check_size(points, label, scalable=False)
     file_mass = body.default_mass()
     mass_properties = None
     if file_mass > 0.0 and math.isfinite(file_mass):
