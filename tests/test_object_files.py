@@ -287,6 +287,26 @@ def test_an_mjcf_model_in_millimetres_takes_scale_and_a_urdf_is_told_its_mesh_sc
     assert "a scale on the model's <mesh> elements 0.001" in line and "--scale" not in line
 
 
+def test_mjcf_euler_follows_the_compilers_eulerseq_and_xyaxes_turn_a_geom(tmp_path):
+    """A 10 × 2 × 1 cm box turned by euler="90 0 0": about x by default (its long side stays along x),
+    about z where the compiler's eulerseq starts with z (it then runs along y); xyaxes="0 1 0 -1 0 0"
+    turns it a quarter about z too. Told apart by a 1 cm cube beside it at x = 8 cm."""
+    def extents(compiler: str, orientation: str) -> list:
+        path = tmp_path / f"turned{len(list(tmp_path.iterdir()))}.xml"
+        path.write_text(f'<mujoco>{compiler}<worldbody><body><geom type="box" size="0.05 0.01 0.005" {orientation}/>'
+                        '<geom type="box" size="0.005 0.005 0.005" pos="0.08 0 0"/></body></worldbody></mujoco>')
+        return sorted(np.round(resolve_user_object(str(path), join_gap=0.1).extents, 4))
+
+    assert extents("", 'euler="90 0 0"') == pytest.approx([0.01, 0.02, 0.135])
+    assert extents('<compiler eulerseq="zyx"/>', 'euler="90 0 0"') == pytest.approx([0.01, 0.095, 0.1])
+    assert extents("", 'xyaxes="0 1 0 -1 0 0"') == pytest.approx([0.01, 0.095, 0.1])
+    bad = tmp_path / "bad_seq.xml"
+    bad.write_text('<mujoco><compiler eulerseq="xyw"/><worldbody><body><geom type="box" size="0.05 0.01 0.01"/>'
+                   "</body></worldbody></mujoco>")
+    with pytest.raises(ObjectError, match="eulerseq 'xyw'"):
+        resolve_user_object(str(bad))
+
+
 def test_a_model_files_convex_piece_whose_triangles_close_nothing_is_its_hull(tmp_path):
     """pybullet's dinnerware (a plate, a pan) gives its rim as 8-vertex convex pieces whose 16
     triangles overlap and close nothing. Bullet, MuJoCo and Drake's point contact collide a mesh as

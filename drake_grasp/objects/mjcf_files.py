@@ -58,8 +58,10 @@ def _geom_name(geom: dict) -> str:
     return f"geom {geom['name']!r}" if geom.get("name") else f"{geom.get('type', 'sphere')} geom"
 
 
-def _mjcf_rotation(element, degrees: bool, label: str) -> np.ndarray:
-    """The rotation an MJCF element's quat, axisangle, euler (xyz) or zaxis gives (3×3)."""
+def _mjcf_rotation(element, degrees: bool, label: str, eulerseq: str = "xyz") -> np.ndarray:
+    """The rotation an MJCF element's quat, axisangle, euler, xyaxes or zaxis gives (3×3), as MuJoCo
+    reads them: a quat is (w, x, y, z); euler angles follow the compiler's `eulerseq`, each lowercase
+    axis turning with the frame (intrinsic) and each uppercase one about the fixed frame."""
     if element.get("quat") is not None:
         q = _floats(element.get("quat"), 4, label, f"{element.tag} quat")
         if np.linalg.norm(q) < 1e-9:
@@ -72,7 +74,19 @@ def _mjcf_rotation(element, degrees: bool, label: str) -> np.ndarray:
     if element.get("euler") is not None:
         angles = _floats(element.get("euler"), 3, label, f"{element.tag} euler")
         angles = np.radians(angles) if degrees else angles
-        return trimesh.transformations.euler_matrix(*angles, axes="rxyz")[:3, :3]
+        R = np.eye(3)
+        for axis, angle in zip(eulerseq, angles):
+            turn = trimesh.transformations.rotation_matrix(angle, np.eye(3)["xyz".index(axis.lower())])[:3, :3]
+            R = R @ turn if axis.islower() else turn @ R
+        return R
+    if element.get("xyaxes") is not None:
+        axes = _floats(element.get("xyaxes"), 6, label, f"{element.tag} xyaxes")
+        x = axes[:3] / np.linalg.norm(axes[:3])
+        y = axes[3:] - (axes[3:] @ x) * x
+        if np.linalg.norm(y) < 1e-9:
+            raise ObjectError(f"{label}: {element.tag} xyaxes {element.get('xyaxes')!r}: the axes are parallel")
+        y = y / np.linalg.norm(y)
+        return np.column_stack([x, y, np.cross(x, y)])
     if element.get("zaxis") is not None:
         z = _floats(element.get("zaxis"), 3, label, f"{element.tag} zaxis")
         return trimesh.geometry.align_vectors([0, 0, 1], z / np.linalg.norm(z))[:3, :3]
@@ -237,6 +251,9 @@ def _read_mjcf(path: Path, label: str) -> tuple[trimesh.Trimesh, tuple[float, fl
     for element in root.findall("compiler"):
         compiler.update(element.attrib)
     degrees = compiler.get("angle", "degree") != "radian"
+    eulerseq = compiler.get("eulerseq", "xyz").strip()
+    if len(eulerseq) != 3 or any(axis not in "xyzXYZ" for axis in eulerseq):
+        raise ObjectError(f"{label}: compiler eulerseq {eulerseq!r}: expected three of x, y, z, X, Y, Z")
     base = path.parent
     meshdir = base / compiler.get("meshdir", compiler.get("assetdir", ""))
     meshes = {}
@@ -265,7 +282,7 @@ def _read_mjcf(path: Path, label: str) -> tuple[trimesh.Trimesh, tuple[float, fl
         for element in body.findall("inertial"):
             given = _floats(element.get("mass"), 1, label, "inertial mass")
             mass = math.nan if given is None else float(given[0])
-            R = _mjcf_rotation(element, degrees, label)
+            R = _mjcf_rotation(element, degrees, label, eulerseq)
             if element.get("fullinertia") is not None:
                 xx, yy, zz, xy, xz, yz = _floats(element.get("fullinertia"), 6, label, "inertial fullinertia")
                 inertia = np.array([[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]])
@@ -286,12 +303,12 @@ def _read_mjcf(path: Path, label: str) -> tuple[trimesh.Trimesh, tuple[float, fl
                 X_BG, geom = _from_to(geom, label)
             else:
                 X_BG = np.eye(4)
-                X_BG[:3, :3] = _mjcf_rotation(element, degrees, label)
+                X_BG[:3, :3] = _mjcf_rotation(element, degrees, label, eulerseq)
                 X_BG[:3, 3] = _floats(geom.get("pos", "0 0 0"), 3, label, f"{_geom_name(geom)} pos")
             pieces.append((collides, X_RB @ X_BG, geom))
         for child in body.findall("body"):
             X_BC = np.eye(4)
-            X_BC[:3, :3] = _mjcf_rotation(child, degrees, label)
+            X_BC[:3, :3] = _mjcf_rotation(child, degrees, label, eulerseq)
             X_BC[:3, 3] = _floats(child.get("pos", "0 0 0"), 3, label, "body pos")
             walk(child, X_RB @ X_BC, child.get("childclass", default_class))
 
