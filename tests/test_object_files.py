@@ -287,7 +287,7 @@ def test_an_mjcf_model_in_millimetres_takes_scale_and_a_urdf_is_told_its_mesh_sc
     assert "a scale on the model's <mesh> elements 0.001" in line and "--scale" not in line
 
 
-def test_mjcf_euler_follows_the_compilers_eulerseq_and_xyaxes_turn_a_geom(tmp_path):
+def test_mjcf_euler_follows_the_compilers_eulerseq_and_xyaxes_and_frames_turn_a_geom(tmp_path):
     """A 10 × 2 × 1 cm box turned by euler="90 0 0": about x by default (its long side stays along x),
     about z where the compiler's eulerseq starts with z (it then runs along y); xyaxes="0 1 0 -1 0 0"
     turns it a quarter about z too. Told apart by a 1 cm cube beside it at x = 8 cm."""
@@ -300,6 +300,12 @@ def test_mjcf_euler_follows_the_compilers_eulerseq_and_xyaxes_turn_a_geom(tmp_pa
     assert extents("", 'euler="90 0 0"') == pytest.approx([0.01, 0.02, 0.135])
     assert extents('<compiler eulerseq="zyx"/>', 'euler="90 0 0"') == pytest.approx([0.01, 0.095, 0.1])
     assert extents("", 'xyaxes="0 1 0 -1 0 0"') == pytest.approx([0.01, 0.095, 0.1])
+    # A MuJoCo 3 <frame> places what it holds: the same quarter turn about z, through a frame.
+    framed = tmp_path / "framed.xml"
+    framed.write_text('<mujoco><worldbody><frame pos="1 0 0"><body><frame euler="0 0 90">'
+                      '<geom type="box" size="0.05 0.01 0.005"/></frame>'
+                      '<geom type="box" size="0.005 0.005 0.005" pos="0.08 0 0"/></body></frame></worldbody></mujoco>')
+    assert sorted(np.round(resolve_user_object(str(framed), join_gap=0.1).extents, 4)) == pytest.approx([0.01, 0.095, 0.1])
     bad = tmp_path / "bad_seq.xml"
     bad.write_text('<mujoco><compiler eulerseq="xyw"/><worldbody><body><geom type="box" size="0.05 0.01 0.01"/>'
                    "</body></worldbody></mujoco>")

@@ -1,7 +1,7 @@
 """MuJoCo MJCF object files, read here (Drake's MJCF parser reads only OBJ meshes, and MuJoCo-based
 benchmarks ship objects as one body with STL mesh geoms).
 
-What is read: the geoms of the body tree under ``worldbody`` (bodies nested without joints are one rigid
+What is read: the geoms of the body tree under ``worldbody`` (bodies and MuJoCo 3 ``<frame>``s nested without joints are one rigid
 body; a free joint is allowed; beside a scene welded to the world, the one free body is the object:
 `_the_object_body`), their poses, MuJoCo's defaults (``<default>`` classes), ``<include>``d files, the
 compiler's ``meshdir``/``assetdir`` and ``angle``, mesh ``scale``, and each geom's ``mass`` or
@@ -271,7 +271,10 @@ def _read_mjcf(path: Path, label: str) -> tuple[trimesh.Trimesh, tuple[float, fl
     pieces, inertial = [], None
     given_mass, density_volume = 0.0, 0.0  # kg: the geoms' own masses, and density × volume in the file's unit
     # The world's own geoms (a floor plane, say) are not the object: only bodies are.
-    bodies = _the_object_body(label, [body for worldbody in worldbodies for body in worldbody.findall("body")])
+    def top_bodies(element) -> list:  # the world's bodies, also those inside (nested) <frame>s
+        return element.findall("body") + [b for frame in element.findall("frame") for b in top_bodies(frame)]
+
+    bodies = _the_object_body(label, [body for worldbody in worldbodies for body in top_bodies(worldbody)])
 
     def walk(body, X_RB: np.ndarray, default_class: str):
         nonlocal inertial
@@ -306,10 +309,11 @@ def _read_mjcf(path: Path, label: str) -> tuple[trimesh.Trimesh, tuple[float, fl
                 X_BG[:3, :3] = _mjcf_rotation(element, degrees, label, eulerseq)
                 X_BG[:3, 3] = _floats(geom.get("pos", "0 0 0"), 3, label, f"{_geom_name(geom)} pos")
             pieces.append((collides, X_RB @ X_BG, geom))
-        for child in body.findall("body"):
+        # A <frame> (MuJoCo 3) only places what it holds; its geoms and bodies are the body's.
+        for child in body.findall("body") + body.findall("frame"):
             X_BC = np.eye(4)
             X_BC[:3, :3] = _mjcf_rotation(child, degrees, label, eulerseq)
-            X_BC[:3, 3] = _floats(child.get("pos", "0 0 0"), 3, label, "body pos")
+            X_BC[:3, 3] = _floats(child.get("pos", "0 0 0"), 3, label, f"{child.tag} pos")
             walk(child, X_RB @ X_BC, child.get("childclass", default_class))
 
     walk(bodies[0], np.eye(4), bodies[0].get("childclass", "main"))
