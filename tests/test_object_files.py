@@ -313,6 +313,25 @@ def test_mjcf_euler_follows_the_compilers_eulerseq_and_xyaxes_and_frames_turn_a_
         resolve_user_object(str(bad))
 
 
+def test_an_mjcf_mesh_named_relative_to_a_folder_its_project_sets_is_found_for_the_hint(tmp_path, capsys):
+    """robogym loads its MJCF files from code that sets the mesh folder (assets/stls); the files name
+    their meshes relative to it. As MuJoCo would, the file is refused, in one line that says where the
+    mesh is and what to add; with that added, it loads."""
+    stls, xmls = tmp_path / "assets" / "stls" / "parts", tmp_path / "assets" / "xmls" / "things"
+    stls.mkdir(parents=True)
+    xmls.mkdir(parents=True)
+    trimesh.creation.box((0.04, 0.03, 0.02)).export(stls / "box.stl")
+    body = '<asset><mesh file="parts/box.stl" name="b"/></asset><worldbody><body><geom type="mesh" mesh="b"/></body></worldbody>'
+    path = xmls / "thing.xml"
+    path.write_text(f"<mujoco>{body}</mujoco>")
+    assert cli.main(["objects", "check", str(path)]) == 2
+    (line,) = capsys.readouterr().err.strip().splitlines()
+    hint = f'<compiler meshdir="{tmp_path / "assets" / "stls"}"/>'
+    assert "not found" in line and hint in line
+    path.write_text(f"<mujoco>{hint}{body}</mujoco>")
+    assert sorted(resolve_user_object(str(path)).extents) == pytest.approx([0.02, 0.03, 0.04])
+
+
 def test_a_model_files_convex_piece_whose_triangles_close_nothing_is_its_hull(tmp_path):
     """pybullet's dinnerware (a plate, a pan) gives its rim as 8-vertex convex pieces whose 16
     triangles overlap and close nothing. Bullet, MuJoCo and Drake's point contact collide a mesh as

@@ -134,9 +134,28 @@ def _from_to(geom: dict, label: str) -> tuple[np.ndarray, dict]:
     return X, {**geom, "size": " ".join(str(v) for v in [*widths, half_length])}
 
 
+def _meshdir_hint(relative: str, base: Path) -> str:
+    """Where a missing mesh may be: collections that load their MJCF files from code (robogym) name
+    meshes relative to a folder the code sets, not to the file's. If the mesh's `relative` path exists
+    under a folder beside the file's folder `base` or one of its ancestors (up to four levels up), say
+    so, and how MuJoCo would be told (``<compiler meshdir>``); else nothing."""
+    if Path(relative).is_absolute():
+        return ""
+    ancestor = base
+    for _ in range(5):
+        if ancestor.is_dir():
+            for candidate in sorted(p for p in ancestor.iterdir() if p.is_dir()):
+                if (candidate / relative).is_file():
+                    return f" (it is under {candidate}: give the file <compiler meshdir=\"{candidate}\"/>)"
+        if ancestor.parent == ancestor:
+            break
+        ancestor = ancestor.parent
+    return ""
+
+
 def _geom_mesh(geom: dict, meshes: dict, label: str) -> trimesh.Trimesh:
     """One MJCF geom as a closed triangle mesh in its own frame (m). `meshes` maps an asset's name to
-    its file and scale; the file is read here, so that a mesh no chosen geom uses (a visual-only one,
+    its file, scale, the path as written and the model's folder; the file is read here, so that a mesh no chosen geom uses (a visual-only one,
     which object collections often ship apart) is never needed."""
     kind = geom.get("type", "sphere")
     size = _floats(geom.get("size", "0 0 0"), None, label, f"{_geom_name(geom)} size")
@@ -144,9 +163,9 @@ def _geom_mesh(geom: dict, meshes: dict, label: str) -> trimesh.Trimesh:
         name = geom.get("mesh")
         if name not in meshes:
             raise ObjectError(f"{label}: geom names mesh {name!r}, which the file's assets do not define")
-        mesh_path, scale = meshes[name]
+        mesh_path, scale, relative, base = meshes[name]
         if not mesh_path.is_file():
-            raise ObjectError(f"{label}: mesh {name!r}: {mesh_path} not found")
+            raise ObjectError(f"{label}: mesh {name!r}: {mesh_path} not found{_meshdir_hint(relative, base)}")
         loaded = read_triangles(mesh_path, f"{label}: mesh {name!r}: {mesh_path.name}")
         if scale is not None:
             loaded.apply_transform(np.diag([*scale, 1.0]))
@@ -263,7 +282,7 @@ def _read_mjcf(path: Path, label: str) -> tuple[trimesh.Trimesh, tuple[float, fl
             if file is None:
                 raise ObjectError(f"{label}: a mesh asset without a file (inline vertices are not supported)")
             name = mesh.get("name", Path(file).stem)
-            meshes[name] = (meshdir / file, _floats(mesh.get("scale"), 3, label, f"mesh {name!r} scale"))
+            meshes[name] = (meshdir / file, _floats(mesh.get("scale"), 3, label, f"mesh {name!r} scale"), file, base)
     worldbodies = root.findall("worldbody")  # several, once included files are in: MuJoCo merges them
     if not worldbodies:
         raise ObjectError(f"{label}: the file has no <worldbody>")
