@@ -145,7 +145,7 @@ def _solid_from_mesh(mesh: trimesh.Trimesh, label: str, join_gap: float | None =
     try:
         shells, report = repair.closed_shells(mesh, label)
     except repair.RepairError as error:
-        hull = _hull_of_a_convex_piece(mesh) if one_body else None
+        hull = repair.convex_piece_hull(mesh) if one_body else None
         if hull is None:
             raise ObjectError(str(error)) from None
         warnings.warn(f"{label}: its triangles close nothing, but its {len(hull.vertices)} vertices all lie on their convex "
@@ -155,27 +155,6 @@ def _solid_from_mesh(mesh: trimesh.Trimesh, label: str, join_gap: float | None =
     if report.changed:
         warnings.warn(f"{label}: {report.describe()}", MeshNote, stacklevel=3)
     return _user_solid(shells, label, keep_largest, join_gap, one_body)
-
-
-def _hull_of_a_convex_piece(mesh: trimesh.Trimesh) -> trimesh.Trimesh | None:
-    """The convex hull of a mesh whose vertices all lie on it (within 0.1 % of its extent) and which
-    encloses a volume, else None. A model file's collision mesh is often a convex piece of a
-    decomposition written with faces doubled or missing (pybullet's dinnerware: a plate's rim as six
-    8-vertex pieces of 16 triangles, none closed); Bullet and MuJoCo collide a mesh as its hull, and
-    so does Drake's point contact, so the hull is the solid the file means."""
-    vertices = np.unique(np.asarray(mesh.vertices, float)[np.unique(np.asarray(mesh.faces))], axis=0)
-    if len(vertices) < 4:
-        return None
-    try:
-        hull = trimesh.convex.convex_hull(vertices)
-    except Exception:  # qhull: the points are flat or a line
-        return None
-    extent = float(np.max(hull.extents))
-    if not hull.is_watertight or hull.volume <= (1e-3 * extent) ** 3:
-        return None
-    normals, offsets = np.asarray(hull.face_normals), np.einsum("ij,ij->i", hull.face_normals, hull.triangles[:, 0])
-    outside = vertices @ normals.T - offsets  # <= 0 inside every face's plane; 0 on the hull
-    return hull if bool(np.all(outside.max(axis=1) > -1e-3 * extent)) else None
 
 
 def _cached_solid(mesh: trimesh.Trimesh, label: str, key: str, join_gap: float | None,

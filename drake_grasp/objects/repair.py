@@ -23,7 +23,9 @@ outward-wound shells. The steps, each counted for the one-line note a user sees:
 4. wind each patch consistently and outward (trimesh's BFS over face adjacency);
 5. close each open patch: MeshFix (pymeshfix, Attene 2010) fills its holes and removes what is not
    manifold; a patch that still encloses no volume (a sheet, a fin, an internal partition) is
-   dropped, and when nothing else is left the file is refused.
+   dropped, and when nothing else is left the file is refused; but a model file's collision mesh
+   whose vertices all lie on their convex hull is that hull (`convex_piece_hull`: the engines a URDF,
+   SDF or MJCF is made for collide a mesh as its hull).
 
 Why MeshFix: measured on the defect zoo (drake_grasp.objects.mesh_zoo, scripts/bench_repair.py),
 trimesh.repair.fill_holes closes only holes of one or two triangles, and Manifold refuses any mesh
@@ -438,3 +440,25 @@ def _part_shells(mesh: trimesh.Trimesh, report: RepairReport, opened: list) -> l
             continue
         shells.append(patch)
     return shells
+
+
+def convex_piece_hull(mesh: trimesh.Trimesh) -> trimesh.Trimesh | None:
+    """The convex hull of a mesh whose vertices all lie on it (within 0.1 % of its extent) and which
+    encloses a volume, else None. A model file's collision mesh is often a convex piece of a
+    decomposition written with faces doubled or missing (pybullet's dinnerware: a plate's rim as six
+    8-vertex pieces of 16 triangles, none closed); Bullet and MuJoCo collide a mesh as its hull, and
+    so does Drake's point contact, so the hull is the solid the file means (`mesh_files` takes it for a
+    model file's collision mesh that `closed_shells` cannot close; a bare mesh file is still refused)."""
+    vertices = np.unique(np.asarray(mesh.vertices, float)[np.unique(np.asarray(mesh.faces))], axis=0)
+    if len(vertices) < 4:
+        return None
+    try:
+        hull = trimesh.convex.convex_hull(vertices)
+    except Exception:  # qhull: the points are flat or a line
+        return None
+    extent = float(np.max(hull.extents))
+    if not hull.is_watertight or hull.volume <= (1e-3 * extent) ** 3:
+        return None
+    normals, offsets = np.asarray(hull.face_normals), np.einsum("ij,ij->i", hull.face_normals, hull.triangles[:, 0])
+    outside = vertices @ normals.T - offsets  # <= 0 inside every face's plane; 0 on the hull
+    return hull if bool(np.all(outside.max(axis=1) > -1e-3 * extent)) else None
