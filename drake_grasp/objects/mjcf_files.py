@@ -1,8 +1,8 @@
 """MuJoCo MJCF object files, read here (Drake's MJCF parser reads only OBJ meshes, and MuJoCo-based
 benchmarks ship objects as one body with STL mesh geoms).
 
-What is read: the geoms of the body tree under ``worldbody`` (bodies and MuJoCo 3 ``<frame>``s nested without joints are one rigid
-body; a free joint is allowed; beside a scene welded to the world, the one free body is the object:
+What is read: the geoms of the body tree under ``worldbody`` (bodies and MuJoCo 3 ``<frame>``s nested
+without joints are one rigid body; a free joint is allowed; beside a scene welded to the world, the one free body is the object:
 `_the_object_body`), their poses, MuJoCo's defaults (``<default>`` classes), ``<include>``d files, the
 compiler's ``meshdir``/``assetdir`` and ``angle``, mesh ``scale``, and each geom's ``mass`` or
 ``density`` (MuJoCo's default 1000 kg/m³) or the body's ``<inertial>``. Collision geoms are those
@@ -155,8 +155,9 @@ def _meshdir_hint(relative: str, base: Path) -> str:
 
 def _geom_mesh(geom: dict, meshes: dict, label: str) -> trimesh.Trimesh:
     """One MJCF geom as a closed triangle mesh in its own frame (m). `meshes` maps an asset's name to
-    its file, scale, the path as written and the model's folder; the file is read here, so that a mesh no chosen geom uses (a visual-only one,
-    which object collections often ship apart) is never needed."""
+    its file, scale, the path as written and the model's folder; the file is read here, so that a mesh
+    no chosen geom uses (a visual-only one, which object collections often ship apart) is never
+    needed."""
     kind = geom.get("type", "sphere")
     size = _floats(geom.get("size", "0 0 0"), None, label, f"{_geom_name(geom)} size")
     if kind == "mesh":

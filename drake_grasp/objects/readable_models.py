@@ -83,8 +83,8 @@ def drake_readable_model(path: Path, label: str, package_map, local: dict) -> st
     (:func:`_converted_obj`) and named by it, and an SDFormat model that is static (Gazebo holds it
     fixed: osrf/gazebo_models' ``hammer``) made free, with a :class:`StaticModelNote`: an object to
     grasp is one the hand can lift; a file of Gazebo's format before SDFormat 1.3 (the root
-    ``<gazebo version="1.2">``) is read as SDFormat 1.3. None if the file needs none of these (it is then parsed as it is) or is
-    not XML (the parser says why).
+    ``<gazebo version="1.2">``) is read as SDFormat 1.3. None if the file needs none of these (it is
+    then parsed as it is) or is not XML (the parser says why).
 
     The text is parsed from a string, not from its folder, so every other path it gives is made an
     absolute ``file://`` URI (Drake refuses a bare path in a string); ``package://`` URIs are kept
