@@ -29,6 +29,12 @@ def _load(case):
     return spec, [str(w.message) for w in caught]
 
 
+def _one_body_mjcf(path, geoms: str, compiler: str = ""):
+    """`path`, written as an MJCF file of one body made of `geoms` (MJCF text), after `compiler`."""
+    path.write_text(f"<mujoco>{compiler}<worldbody><body>{geoms}</body></worldbody></mujoco>")
+    return path
+
+
 @pytest.mark.parametrize("defect", mesh_zoo.CLASSES)
 def test_every_zoo_case_is_accepted_repaired_or_refused_for_its_reason(zoo, defect):
     (case,) = [c for c in zoo if c.defect == defect]
@@ -235,16 +241,13 @@ def test_an_mjcf_object_of_rotated_geoms_loads_without_its_visual_mesh(tmp_path)
     # Turned a quarter about z, the 10 × 2 × 4 cm box runs along y, from -5 to +5 cm; the cube's far
     # side is at 7 cm: 12 cm along y, 2 cm across, 4 cm tall.
     np.testing.assert_allclose(sorted(spec.extents), [0.02, 0.04, 0.12], atol=1e-4)
-    zero = tmp_path / "zero_quat.xml"
-    zero.write_text(f'<mujoco><worldbody><body>{turned.replace("0.70711 0 0 0.70711", "0 0 0 0")}'
-                    "</body></worldbody></mujoco>")
+    zero = _one_body_mjcf(tmp_path / "zero_quat.xml", turned.replace("0.70711 0 0 0.70711", "0 0 0 0"))
     with pytest.raises(ObjectError, match="quat .* is zero"):
         resolve_user_object(str(zero))
     # A body's geoms 2 cm apart (a bottle's cap boxed apart from its body, LIBERO's salad dressing) are
     # one rigid body, as the file declares, where a bare mesh of two parts is refused.
-    apart = tmp_path / "apart.xml"
-    apart.write_text('<mujoco><worldbody><body><geom type="box" size="0.02 0.02 0.02"/>'
-                     '<geom type="box" size="0.01 0.01 0.01" pos="0.05 0 -0.01"/></body></worldbody></mujoco>')
+    apart = _one_body_mjcf(tmp_path / "apart.xml", '<geom type="box" size="0.02 0.02 0.02"/>'
+                           '<geom type="box" size="0.01 0.01 0.01" pos="0.05 0 -0.01"/>')
     spec, notes = _load(type("Case", (), {"path": apart, "scale": 1.0}))
     np.testing.assert_allclose(sorted(spec.extents), [0.04, 0.04, 0.08], atol=1e-4)
     assert any("one rigid body" in note for note in notes)
@@ -254,14 +257,11 @@ def test_mjcf_geoms_given_by_fromto_are_placed_as_mujoco_places_them(tmp_path):
     """A capsule along x from 0 to 10 cm (radius 1 cm) and a cylinder up z from 0 to 5 cm (radius 2
     cm): their union spans -2..11 cm in x, ±2 cm in y and -1..5 cm in z. 'fromto' on a sphere, which
     MuJoCo refuses too, is one line."""
-    path = tmp_path / "fromto.xml"
-    path.write_text('<mujoco><worldbody><body><geom type="capsule" size="0.01" fromto="0 0 0 0.1 0 0"/>'
-                    '<geom type="cylinder" size="0.02" fromto="0 0 0 0 0 0.05"/></body></worldbody></mujoco>')
+    path = _one_body_mjcf(tmp_path / "fromto.xml", '<geom type="capsule" size="0.01" fromto="0 0 0 0.1 0 0"/>'
+                          '<geom type="cylinder" size="0.02" fromto="0 0 0 0 0 0.05"/>')
     spec = resolve_user_object(str(path))
     np.testing.assert_allclose(sorted(spec.extents), [0.04, 0.06, 0.13], atol=2e-3)
-    sphere = tmp_path / "sphere_fromto.xml"
-    sphere.write_text('<mujoco><worldbody><body><geom type="sphere" size="0.02" fromto="0 0 0 0 0 0.05"/>'
-                      "</body></worldbody></mujoco>")
+    sphere = _one_body_mjcf(tmp_path / "sphere_fromto.xml", '<geom type="sphere" size="0.02" fromto="0 0 0 0 0 0.05"/>')
     with pytest.raises(ObjectError, match="'fromto' is for capsules"):
         resolve_user_object(str(sphere))
 
@@ -270,9 +270,8 @@ def test_an_mjcf_model_in_millimetres_takes_scale_and_a_urdf_is_told_its_mesh_sc
     """robogym's chess pieces are MJCF over STL meshes in millimetres: the size check says --scale
     0.001, and --scale applies to MJCF (its geoms' density × volume scaling as the cube, a geom's
     given mass not at all). An SDF or URDF takes no --scale: its hint names the mesh's own scale."""
-    path = tmp_path / "pawn.xml"
-    path.write_text('<mujoco><worldbody><body><geom type="box" size="10 10 20"/>'
-                    '<geom type="sphere" size="5" pos="0 0 25" mass="0.002"/></body></worldbody></mujoco>')
+    path = _one_body_mjcf(tmp_path / "pawn.xml", '<geom type="box" size="10 10 20"/>'
+                          '<geom type="sphere" size="5" pos="0 0 25" mass="0.002"/>')
     assert cli.main(["objects", "check", str(path)]) == 2
     assert "--scale 0.001" in capsys.readouterr().err
     spec = resolve_user_object(str(path), scale=0.001)
@@ -292,9 +291,9 @@ def test_mjcf_euler_follows_the_compilers_eulerseq_and_xyaxes_and_frames_turn_a_
     about z where the compiler's eulerseq starts with z (it then runs along y); xyaxes="0 1 0 -1 0 0"
     turns it a quarter about z too. Told apart by a 1 cm cube beside it at x = 8 cm."""
     def extents(compiler: str, orientation: str) -> list:
-        path = tmp_path / f"turned{len(list(tmp_path.iterdir()))}.xml"
-        path.write_text(f'<mujoco>{compiler}<worldbody><body><geom type="box" size="0.05 0.01 0.005" {orientation}/>'
-                        '<geom type="box" size="0.005 0.005 0.005" pos="0.08 0 0"/></body></worldbody></mujoco>')
+        path = _one_body_mjcf(tmp_path / f"turned{len(list(tmp_path.iterdir()))}.xml",
+                              f'<geom type="box" size="0.05 0.01 0.005" {orientation}/>'
+                              '<geom type="box" size="0.005 0.005 0.005" pos="0.08 0 0"/>', compiler)
         return sorted(np.round(resolve_user_object(str(path), join_gap=0.1).extents, 4))
 
     assert extents("", 'euler="90 0 0"') == pytest.approx([0.01, 0.02, 0.135])
@@ -306,9 +305,8 @@ def test_mjcf_euler_follows_the_compilers_eulerseq_and_xyaxes_and_frames_turn_a_
                       '<geom type="box" size="0.05 0.01 0.005"/></frame>'
                       '<geom type="box" size="0.005 0.005 0.005" pos="0.08 0 0"/></body></frame></worldbody></mujoco>')
     assert sorted(np.round(resolve_user_object(str(framed), join_gap=0.1).extents, 4)) == pytest.approx([0.01, 0.095, 0.1])
-    bad = tmp_path / "bad_seq.xml"
-    bad.write_text('<mujoco><compiler eulerseq="xyw"/><worldbody><body><geom type="box" size="0.05 0.01 0.01"/>'
-                   "</body></worldbody></mujoco>")
+    bad = _one_body_mjcf(tmp_path / "bad_seq.xml", '<geom type="box" size="0.05 0.01 0.01"/>',
+                         '<compiler eulerseq="xyw"/>')
     with pytest.raises(ObjectError, match="eulerseq 'xyw'"):
         resolve_user_object(str(bad))
 

@@ -2,15 +2,15 @@
 benchmarks ship objects as one body with STL mesh geoms).
 
 What is read: the geoms of the body tree under ``worldbody`` (bodies and MuJoCo 3 ``<frame>``s nested
-without joints are one rigid body; a free joint is allowed; beside a scene welded to the world, the one free body is the object:
-`_the_object_body`), their poses, MuJoCo's defaults (``<default>`` classes), ``<include>``d files, the
-compiler's ``meshdir``/``assetdir`` and ``angle``, mesh ``scale``, and each geom's ``mass`` or
-``density`` (MuJoCo's default 1000 kg/m³) or the body's ``<inertial>``. Collision geoms are those
-MuJoCo would collide (``contype`` or ``conaffinity`` non-zero); if none, every geom; only their mesh
-files are read (a visual-only mesh may be missing). The geoms become one mesh in the body frame that
-goes through the same repair and joining as a mesh file (:mod:`drake_grasp.objects.mesh_files`); the
-file declares them one rigid body, so parts apart are its parts, as in a URDF's link. The file's
-inertial is checked
+without joints are one rigid body; a free joint is allowed; beside a scene welded to the world, the one
+free body is the object: `_the_object_body`), their poses, MuJoCo's defaults (``<default>`` classes),
+``<include>``d files, the compiler's ``meshdir``/``assetdir``, ``angle`` and ``eulerseq``, mesh
+``scale``, and each geom's ``mass`` or ``density`` (MuJoCo's default 1000 kg/m³) or the body's
+``<inertial>``. Collision geoms are those MuJoCo would collide (``contype`` or ``conaffinity``
+non-zero); if none, every geom; only their mesh files are read (a visual-only mesh may be missing).
+The geoms become one mesh in the body frame that goes through the same repair and joining as a mesh
+file (:mod:`drake_grasp.objects.mesh_files`); the file declares them one rigid body, so parts apart
+are its parts, as in a URDF's link. The file's inertial is checked
 (:mod:`drake_grasp.objects.inertia_checks`). Split from :mod:`drake_grasp.objects.model_files`, which
 names it among the model-file loaders.
 """
@@ -134,14 +134,15 @@ def _from_to(geom: dict, label: str) -> tuple[np.ndarray, dict]:
     return X, {**geom, "size": " ".join(str(v) for v in [*widths, half_length])}
 
 
-def _meshdir_hint(relative: str, base: Path) -> str:
+def _meshdir_hint(relative: str, meshdir: Path) -> str:
     """Where a missing mesh may be: collections that load their MJCF files from code (robogym) name
     meshes relative to a folder the code sets, not to the file's. If the mesh's `relative` path exists
-    under a folder beside the file's folder `base` or one of its ancestors (up to four levels up), say
-    so, and how MuJoCo would be told (``<compiler meshdir>``); else nothing."""
+    under a folder beside `meshdir` (the file's folder unless its compiler says otherwise) or one of its
+    ancestors (up to four levels up), say so, and how MuJoCo would be told (``<compiler meshdir>``);
+    else nothing."""
     if Path(relative).is_absolute():
         return ""
-    ancestor = base
+    ancestor = meshdir
     for _ in range(5):
         if ancestor.is_dir():
             for candidate in sorted(p for p in ancestor.iterdir() if p.is_dir()):
@@ -155,18 +156,19 @@ def _meshdir_hint(relative: str, base: Path) -> str:
 
 def _geom_mesh(geom: dict, meshes: dict, label: str) -> trimesh.Trimesh:
     """One MJCF geom as a closed triangle mesh in its own frame (m). `meshes` maps an asset's name to
-    its file, scale, the path as written and the model's folder; the file is read here, so that a mesh
-    no chosen geom uses (a visual-only one, which object collections often ship apart) is never
-    needed."""
+    its folder (the compiler's meshdir), its path as the file writes it and its scale; the file is
+    read here, so that a mesh no chosen geom uses (a visual-only one, which object collections often
+    ship apart) is never needed."""
     kind = geom.get("type", "sphere")
     size = _floats(geom.get("size", "0 0 0"), None, label, f"{_geom_name(geom)} size")
     if kind == "mesh":
         name = geom.get("mesh")
         if name not in meshes:
             raise ObjectError(f"{label}: geom names mesh {name!r}, which the file's assets do not define")
-        mesh_path, scale, relative, base = meshes[name]
+        meshdir, file, scale = meshes[name]
+        mesh_path = meshdir / file
         if not mesh_path.is_file():
-            raise ObjectError(f"{label}: mesh {name!r}: {mesh_path} not found{_meshdir_hint(relative, base)}")
+            raise ObjectError(f"{label}: mesh {name!r}: {mesh_path} not found{_meshdir_hint(file, meshdir)}")
         loaded = read_triangles(mesh_path, f"{label}: mesh {name!r}: {mesh_path.name}")
         if scale is not None:
             loaded.apply_transform(np.diag([*scale, 1.0]))
@@ -283,7 +285,7 @@ def _read_mjcf(path: Path, label: str) -> tuple[trimesh.Trimesh, tuple[float, fl
             if file is None:
                 raise ObjectError(f"{label}: a mesh asset without a file (inline vertices are not supported)")
             name = mesh.get("name", Path(file).stem)
-            meshes[name] = (meshdir / file, _floats(mesh.get("scale"), 3, label, f"mesh {name!r} scale"), file, base)
+            meshes[name] = (meshdir, file, _floats(mesh.get("scale"), 3, label, f"mesh {name!r} scale"))
     worldbodies = root.findall("worldbody")  # several, once included files are in: MuJoCo merges them
     if not worldbodies:
         raise ObjectError(f"{label}: the file has no <worldbody>")
@@ -342,8 +344,8 @@ def _read_mjcf(path: Path, label: str) -> tuple[trimesh.Trimesh, tuple[float, fl
         raise ObjectError(f"{label}: the body has no geoms")
     chosen = [(collides, _geom_mesh(geom, meshes, label).apply_transform(X_RG), geom)
               for collides, X_RG, geom in chosen]
-    for path_used in sorted({str(meshes[geom["mesh"]][0]) for _, _, geom in chosen if geom.get("type") == "mesh"}):
-        digest.update(Path(path_used).read_bytes())
+    for used in sorted({str(Path(*meshes[geom["mesh"]][:2])) for _, _, geom in chosen if geom.get("type") == "mesh"}):
+        digest.update(Path(used).read_bytes())
     for _, mesh, geom in chosen:
         if geom.get("mass") is not None:
             given_mass += float(_floats(geom["mass"], 1, label, f"{_geom_name(geom)} mass")[0])

@@ -141,8 +141,8 @@ def mesh_options(scale: float = 1.0, largest_component: bool = False, join_gap: 
 def options_for(name_or_path: str, **options) -> dict:
     """Of `options` (:func:`mesh_options`'s keywords), those the object takes: scale,
     largest_component and join_gap a mesh file or an ``.xml``/``.mjcf`` model (MJCF, or a GraspIt!
-    body, whose unit is fixed, millimetres: `_object_from_file` refuses a scale for it); inertia a model file;
-    package_path an SDF or URDF file (the ones that name ``package://`` URIs)."""
+    body, whose unit is fixed, millimetres: `_object_from_file` refuses a scale for it); inertia a
+    model file; package_path an SDF or URDF file (the ones that name ``package://`` URIs)."""
     text = str(name_or_path).strip()
     mjcf = is_model_file(text) and Path(text).suffix.lower() in (".xml", ".mjcf")
     takes = {"scale": is_mesh_file(text) or mjcf, "largest_component": is_mesh_file(text) or mjcf,
