@@ -13,6 +13,8 @@ from drake_grasp import cli, trial
 from drake_grasp.objects import mesh_zoo, repair, solid
 from drake_grasp.objects.model_files import InertiaWarning, inertia_problem
 from drake_grasp.objects import ObjectError
+from drake_grasp.objects.spec import DEFAULT_DENSITY
+from drake_grasp.objects.mass_properties import _piece_points
 from drake_grasp.trial import SIMULATION_ERROR, TrialSpec
 from drake_grasp.objects.names import resolve_user_object
 
@@ -194,13 +196,93 @@ def test_a_gltf_file_is_turned_z_up(tmp_path):
     assert spec.extents[2] == pytest.approx(0.12)  # its up is z on the table
 
 
-def test_an_articulated_mjcf_model_is_refused(tmp_path):
+def test_an_articulated_mjcf_model_is_held_rigid_where_the_file_puts_it(tmp_path):
+    """A hinged lid is held at the file's pose (a note names the joint); the two bodies' <inertial>s
+    are one rigid body's: masses added, the centre of mass between them."""
+    inertial = '<inertial pos="0 0 0" mass="{}" diaginertia="1e-5 1e-5 1e-5"/>'
     path = tmp_path / "hinged.xml"
-    path.write_text('<mujoco><worldbody><body><geom type="box" size="0.02 0.02 0.02"/>'
-                    '<body pos="0.05 0 0"><joint type="hinge"/><geom type="box" size="0.02 0.02 0.02"/></body>'
-                    "</body></worldbody></mujoco>")
-    with pytest.raises(ObjectError, match="articulated"):
-        resolve_user_object(str(path))
+    path.write_text(f'<mujoco><worldbody><body>{inertial.format(0.1)}<geom type="box" size="0.02 0.02 0.02"/>'
+                    f'<body pos="0.04 0 0"><joint name="lid" type="hinge"/>{inertial.format(0.3)}'
+                    '<geom type="box" size="0.02 0.02 0.02"/></body></body></worldbody></mujoco>')
+    spec, notes = _load(type("Case", (), {"path": path, "scale": 1.0}))
+    assert any("articulated" in note and "hinge joint 'lid'" in note for note in notes)
+    np.testing.assert_allclose(sorted(spec.extents), [0.04, 0.04, 0.08], atol=1e-6)
+    assert spec.mass == pytest.approx(0.4)
+    # The centre of mass sits 3/4 of the way to the lid: 1 cm from the object's middle.
+    middle = (np.min(_points(spec), axis=0) + np.max(_points(spec), axis=0)) / 2
+    assert np.linalg.norm(middle[:2]) == pytest.approx(0.01, abs=1e-4)
+
+
+def _points(spec):
+    """The object's piece vertices in its frame O (m; O at the centre of mass)."""
+    return np.vstack([_piece_points(piece) for piece in spec.pieces])
+
+
+def _write_urdf(path, body: str) -> str:
+    path.write_text(f'<?xml version="1.0"?><robot name="thing">{body}</robot>')
+    return str(path)
+
+
+def _link(name: str, size: str, mass: float | None = None) -> str:
+    inertial = (f'<inertial><mass value="{mass}"/><inertia ixx="1e-5" iyy="1e-5" izz="1e-5" ixy="0" ixz="0" '
+                'iyz="0"/></inertial>') if mass else ""
+    return (f'<link name="{name}">{inertial}<collision><geometry><box size="{size}"/></geometry></collision>'
+            "</link>")
+
+
+def _joint(kind: str, parent: str, child: str, xyz: str) -> str:
+    return (f'<joint name="{child}_joint" type="{kind}"><parent link="{parent}"/><child link="{child}"/>'
+            f'<origin xyz="{xyz}"/><axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>')
+
+
+def test_urdf_links_joined_by_fixed_joints_are_one_rigid_body(tmp_path):
+    """A ROS export's empty base_link above the object, and a mug's handle welded to its body: one
+    body, its inertia the links' together (masses added, the centre of mass between them)."""
+    path = _write_urdf(tmp_path / "mug.urdf", '<link name="base_link"/>' + _link("body", "0.06 0.06 0.1", 0.2)
+                       + _link("handle", "0.02 0.01 0.06", 0.05) + _joint("fixed", "base_link", "body", "0 0 0.05")
+                       + _joint("fixed", "body", "handle", "0.04 0 0"))
+    spec, notes = _load(type("Case", (), {"path": path, "scale": 1.0}))
+    assert not any("articulated" in note for note in notes)
+    np.testing.assert_allclose(sorted(spec.extents), [0.06, 0.08, 0.1], atol=1e-6)
+    assert spec.mass == pytest.approx(0.25)
+    # The centre of mass is 0.05 * 0.04 / 0.25 = 8 mm from the body's axis towards the handle.
+    middle_x = (_points(spec)[:, 0].min() + _points(spec)[:, 0].max()) / 2  # the box's middle: 1 cm out
+    assert abs(middle_x) == pytest.approx(0.01 - 0.008, abs=1e-4)
+
+
+def test_an_articulated_urdf_is_held_where_the_file_puts_it_and_two_objects_are_refused(tmp_path):
+    """A lid on a revolute joint (PartNet-Mobility's objects) is held at its default position, with a note
+    naming the joint; a model fixed to the world loads free; two links joined to nothing are refused."""
+    lidded = _write_urdf(tmp_path / "box.urdf", _link("base", "0.08 0.06 0.05", 0.2) + _link("lid", "0.08 0.06 0.01", 0.02)
+                         + _joint("revolute", "base", "lid", "0 0 0.03"))
+    spec, notes = _load(type("Case", (), {"path": lidded, "scale": 1.0}))
+    assert any("articulated" in note and "revolute joint 'lid_joint'" in note for note in notes)
+    np.testing.assert_allclose(sorted(spec.extents), [0.06, 0.06, 0.08], atol=1e-6)
+    fixed = _write_urdf(tmp_path / "fixed.urdf", '<link name="world"/>' + _link("block", "0.04 0.05 0.06", 0.1)
+                        + _joint("fixed", "world", "block", "0 0 0.5"))
+    spec, notes = _load(type("Case", (), {"path": fixed, "scale": 1.0}))
+    assert any("fixed to the world" in note for note in notes) and spec.mass == pytest.approx(0.1)
+    two = _write_urdf(tmp_path / "two.urdf", _link("a", "0.04 0.04 0.04", 0.1) + _link("b", "0.04 0.04 0.04", 0.1))
+    assert cli.main(["objects", "check", two]) == 2
+
+
+def test_a_urdf_collision_mesh_that_encloses_nothing_is_its_hull(tmp_path):
+    """SAPIEN's PartNet-Mobility parts are open surfaces (a bottle's wall without thickness). As the engines a
+    model file is made for collide a mesh, the URDF's collision mesh is its convex hull (a note); the
+    same mesh file alone is still refused (a sheet)."""
+    n = 13  # a corrugated sheet 6 × 6 cm, 3 cm from crest to trough: no thickness, not a convex piece
+    x, y = np.meshgrid(np.linspace(0.0, 0.06, n), np.linspace(0.0, 0.06, n))
+    vertices = np.c_[x.ravel(), y.ravel(), 0.015 * np.sin(x.ravel() / 0.06 * 2 * np.pi)]
+    corners = [i * n + j for i in range(n - 1) for j in range(n - 1)]
+    faces = [[a, a + 1, a + n] for a in corners] + [[a + 1, a + n + 1, a + n] for a in corners]
+    trimesh.Trimesh(vertices, faces).export(tmp_path / "wall.obj")
+    urdf = _write_urdf(tmp_path / "cup.urdf", '<link name="cup"><collision><geometry><mesh filename="wall.obj"/>'
+                       "</geometry></collision></link>")
+    spec, notes = _load(type("Case", (), {"path": urdf, "scale": 1.0}))
+    assert any("an open surface" in note and "convex hull" in note for note in notes)
+    assert sorted(spec.extents)[1:] == pytest.approx([0.06, 0.06], abs=1e-3)
+    with pytest.raises(ObjectError, match="sheet"):
+        resolve_user_object(str(tmp_path / "wall.obj"))
 
 
 def test_an_mjcf_object_beside_its_scene_is_the_free_body(tmp_path):
@@ -266,10 +348,10 @@ def test_mjcf_geoms_given_by_fromto_are_placed_as_mujoco_places_them(tmp_path):
         resolve_user_object(str(sphere))
 
 
-def test_an_mjcf_model_in_millimetres_takes_scale_and_a_urdf_is_told_its_mesh_scale(tmp_path, capsys):
+def test_model_files_in_millimetres_take_scale(tmp_path, capsys):
     """robogym's chess pieces are MJCF over STL meshes in millimetres: the size check says --scale
     0.001, and --scale applies to MJCF (its geoms' density × volume scaling as the cube, a geom's
-    given mass not at all). An SDF or URDF takes no --scale: its hint names the mesh's own scale."""
+    given mass not at all). A URDF over a millimetre mesh takes --scale the same way."""
     path = _one_body_mjcf(tmp_path / "pawn.xml", '<geom type="box" size="10 10 20"/>'
                           '<geom type="sphere" size="5" pos="0 0 25" mass="0.002"/>')
     assert cli.main(["objects", "check", str(path)]) == 2
@@ -283,7 +365,10 @@ def test_an_mjcf_model_in_millimetres_takes_scale_and_a_urdf_is_told_its_mesh_sc
                     "</collision></link></robot>")
     assert cli.main(["objects", "check", str(urdf)]) == 2
     (line,) = capsys.readouterr().err.strip().splitlines()
-    assert "a scale on the model's <mesh> elements 0.001" in line and "--scale" not in line
+    assert "--scale 0.001" in line
+    spec = resolve_user_object(str(urdf), scale=0.001)
+    np.testing.assert_allclose(sorted(spec.extents), [0.02, 0.03, 0.04], atol=1e-4)
+    assert spec.mass == pytest.approx(DEFAULT_DENSITY * 0.02 * 0.03 * 0.04, rel=1e-3)
 
 
 def test_mjcf_euler_follows_the_compilers_eulerseq_and_xyaxes_and_frames_turn_a_geom(tmp_path):
@@ -388,3 +473,26 @@ def test_a_thin_solid_open_by_a_few_edges_is_closed_and_kept_and_a_wavy_sheet_is
     wavy = trimesh.Trimesh(np.c_[x.ravel(), y.ravel(), z.ravel()], np.array(faces), process=False)
     with pytest.raises(repair.RepairError):
         repair.closed_shells(wavy)
+
+
+def test_a_urdf_whose_visuals_drake_cannot_parse_loads_without_them(tmp_path):
+    """VIMA-Bench's Hanoi stand writes a colour as "r, g, b a" (pybullet takes it; Drake's parser wants
+    four numbers). The visuals are replaced by ours: the object loads without them, with a note."""
+    visual = ('<visual><geometry><box size="0.04 0.05 0.06"/></geometry><material name="wood">'
+              '<color rgba="0.61, 0.45, 0.37 1"/></material></visual>')
+    path = _write_urdf(tmp_path / "block.urdf", f'<link name="block">{visual}<collision><geometry>'
+                       '<box size="0.04 0.05 0.06"/></geometry></collision></link>')
+    spec, notes = _load(type("Case", (), {"path": path, "scale": 1.0}))
+    assert any("visual elements left out" in note and "rgba" in note for note in notes)
+    np.testing.assert_allclose(sorted(spec.extents), [0.04, 0.05, 0.06], atol=1e-6)
+
+
+def test_a_urdf_still_in_xacro_is_told_to_expand_it(tmp_path, capsys):
+    """A ROS description saved as .urdf before xacro ran: the parse error says what to do."""
+    path = tmp_path / "thing.urdf"
+    path.write_text('<robot xmlns:xacro="http://www.ros.org/wiki/xacro" name="thing"><xacro:property name="s" '
+                    'value="0.05"/><link name="box"><collision><geometry><box size="${s} ${s} ${s}"/></geometry>'
+                    "</collision></link></robot>")
+    assert cli.main(["objects", "check", str(path)]) == 2
+    (line,) = capsys.readouterr().err.strip().splitlines()
+    assert "cannot parse" in line and "xacro FILE > object.urdf" in line

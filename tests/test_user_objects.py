@@ -89,10 +89,10 @@ def test_a_dense_mesh_is_simplified_with_a_note_and_keeps_its_mass(tmp_path):
     assert len(spec.pieces) == 1
 
 
-def test_cli_scale_is_for_mesh_files_and_mjcf_only(tmp_path, capsys):
+def test_cli_scale_is_for_object_files_only(tmp_path, capsys):
     assert cli.main(["trial", "--object", "cube:0.05", "--scale", "0.001", "--oracle"]) == 2
     assert capsys.readouterr().err.strip().splitlines() == [
-        f"drake-grasp trial: error: cube:0.05: --scale applies to mesh files ({MESH_FORMATS}) and MJCF models only"]
+        f"drake-grasp trial: error: cube:0.05: --scale applies to mesh files ({MESH_FORMATS}) and model files (SDF, URDF, MJCF) only"]
     assert "OpenUSD" in MESH_FORMATS and "3MF" in MESH_FORMATS  # the formats the readers take are named
     path = tmp_path / "box.stl"
     trimesh.creation.box((0.1, 0.06, 0.04)).export(path)

@@ -97,6 +97,8 @@ def check_object(argument: str, **options) -> tuple[ObjectSpec, CheckReport]:
             source = "the collision geometry"
         elif suffix == ".xml" and not replaced and _graspit_body_without_inertia(argument):
             source = "the solid at uniform density (the GraspIt! file gives no <inertia_matrix>)"
+        elif suffix in (".sdf", ".urdf") and not _gives_inertial(argument):
+            source = "the solid at uniform density (the file gives no <inertial>)"
     else:
         source = "the solid at uniform density"
     inertia = spec.inertia_matrix()
@@ -111,6 +113,17 @@ def check_object(argument: str, **options) -> tuple[ObjectSpec, CheckReport]:
         piece_vertices=vertices, rpy_TO=tuple(spec.rpy_TO), rest_height=spec.rest_height, load_time=first,
         cached_load_time=again)
     return spec, report
+
+
+def _gives_inertial(argument: str) -> bool:
+    """Whether an SDFormat or URDF file gives any link an <inertial> (else Drake's parser gives its
+    links no mass, and the loader uses the solid at uniform density)."""
+    import xml.etree.ElementTree as ElementTree
+
+    try:
+        return any(True for _ in ElementTree.parse(Path(argument).expanduser()).getroot().iter("inertial"))
+    except (ElementTree.ParseError, OSError):
+        return True
 
 
 def _graspit_body_without_inertia(argument: str) -> bool:

@@ -145,12 +145,20 @@ def _solid_from_mesh(mesh: trimesh.Trimesh, label: str, join_gap: float | None =
     try:
         shells, report = repair.closed_shells(mesh, label)
     except repair.RepairError as error:
-        hull = repair.convex_piece_hull(mesh) if one_body else None
+        if not one_body:
+            raise ObjectError(str(error)) from None
+        hull = repair.convex_piece_hull(mesh)
+        if hull is not None:
+            warnings.warn(f"{label}: its triangles close nothing, but its {len(hull.vertices)} vertices all lie on their "
+                          "convex hull: a convex piece, taken as that hull (as the physics engines a model file is made "
+                          "for collide a mesh)", MeshNote, stacklevel=3)
+            return hull
+        hull = repair.surface_hull(mesh)
         if hull is None:
             raise ObjectError(str(error)) from None
-        warnings.warn(f"{label}: its triangles close nothing, but its {len(hull.vertices)} vertices all lie on their convex "
-                      "hull: a convex piece, taken as that hull (as the physics engines a model file is made for "
-                      "collide a mesh)", MeshNote, stacklevel=3)
+        warnings.warn(f"{label}: its triangles close nothing (an open surface); taken as their convex hull, as the "
+                      "physics engines a model file is made for collide a mesh (its hollows are filled)", MeshNote,
+                      stacklevel=3)
         return hull
     if report.changed:
         warnings.warn(f"{label}: {report.describe()}", MeshNote, stacklevel=3)

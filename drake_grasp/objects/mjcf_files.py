@@ -30,7 +30,7 @@ import trimesh
 from drake_grasp.objects.inertia_checks import _check_choice, checked_mass_properties
 from drake_grasp.objects.mesh_files import _one_line, object_from_triangles, read_triangles
 from drake_grasp.objects.pieces import IMPORT_VERSION
-from drake_grasp.objects.spec import (DEFAULT_DENSITY, DEFAULT_MAX_PIECES, MeshNote, ObjectError, ObjectSpec,
+from drake_grasp.objects.spec import (ArticulationNote, DEFAULT_DENSITY, DEFAULT_MAX_PIECES, MeshNote, ObjectError, ObjectSpec,
                                       YELLOW_PAPER_RGBA)
 
 
@@ -256,6 +256,21 @@ def _the_object_body(label: str, bodies: list) -> list:
     return free
 
 
+def _summed_inertials(inertials: list) -> tuple | None:
+    """The bodies' <inertial>s (mass kg, centre of mass m, inertia about it kg·m², in the root body's
+    frame) as one rigid body's, or None if none gives one: masses added, inertias moved to the joint
+    centre of mass (parallel axes)."""
+    if len(inertials) <= 1:
+        return inertials[0] if inertials else None
+    mass = sum(m for m, _, _ in inertials)
+    com = sum(m * np.asarray(c) for m, c, _ in inertials) / mass
+
+    def parallel(offset):
+        return np.dot(offset, offset) * np.eye(3) - np.outer(offset, offset)
+
+    return mass, com, sum(I + m * parallel(np.asarray(c) - com) for m, c, I in inertials)
+
+
 def _read_mjcf(path: Path, label: str) -> tuple[trimesh.Trimesh, tuple[float, float], tuple | None, str]:
     """(collision mesh in the root body's frame, the geoms' mass (kg) as (their given masses, their
     density × volume in the file's unit, which a scale multiplies by its cube), the body's explicit
@@ -290,7 +305,7 @@ def _read_mjcf(path: Path, label: str) -> tuple[trimesh.Trimesh, tuple[float, fl
     if not worldbodies:
         raise ObjectError(f"{label}: the file has no <worldbody>")
     defaults = _mjcf_defaults(root)
-    pieces, inertial = [], None
+    pieces = []
     given_mass, density_volume = 0.0, 0.0  # kg: the geoms' own masses, and density × volume in the file's unit
     # The world's own geoms (a floor plane, say) are not the object: only bodies are.
     def top_bodies(element) -> list:  # the world's bodies, also those inside (nested) <frame>s
@@ -298,12 +313,12 @@ def _read_mjcf(path: Path, label: str) -> tuple[trimesh.Trimesh, tuple[float, fl
 
     bodies = _the_object_body(label, [body for worldbody in worldbodies for body in top_bodies(worldbody)])
 
+    inertials, held = [], []
+
     def walk(body, X_RB: np.ndarray, default_class: str):
-        nonlocal inertial
         for joint in body.findall("joint"):
             if joint.get("type", "hinge") != "free":
-                raise ObjectError(f"{label}: the object is articulated (a {joint.get('type', 'hinge')} joint); "
-                                  "one rigid body is expected")
+                held.append(f"{joint.get('type', 'hinge')} joint {joint.get('name', 'unnamed')!r}")
         for element in body.findall("inertial"):
             given = _floats(element.get("mass"), 1, label, "inertial mass")
             mass = math.nan if given is None else float(given[0])
@@ -316,9 +331,7 @@ def _read_mjcf(path: Path, label: str) -> tuple[trimesh.Trimesh, tuple[float, fl
                 inertia = np.diag(np.full(3, math.nan) if diagonal is None else diagonal)
             pos = _floats(element.get("pos", "0 0 0"), 3, label, "inertial pos")
             R_R = X_RB[:3, :3] @ R
-            if inertial is not None:
-                raise ObjectError(f"{label}: several bodies carry an <inertial>; one rigid body is expected")
-            inertial = (mass, X_RB[:3, :3] @ pos + X_RB[:3, 3], R_R @ inertia @ R_R.T)
+            inertials.append((mass, X_RB[:3, :3] @ pos + X_RB[:3, 3], R_R @ inertia @ R_R.T))
         for element in body.findall("geom"):
             cls = element.get("childclass", None) or element.get("class", default_class)
             geom = dict(defaults.get(cls, defaults["main"]))
@@ -339,6 +352,11 @@ def _read_mjcf(path: Path, label: str) -> tuple[trimesh.Trimesh, tuple[float, fl
             walk(child, X_RB @ X_BC, child.get("childclass", default_class))
 
     walk(bodies[0], np.eye(4), bodies[0].get("childclass", "main"))
+    if held:
+        shown = ", ".join(held[:4]) + (f" and {len(held) - 4} more" if len(held) > 4 else "")
+        warnings.warn(f"{label}: the object is articulated; its {shown} held where the file puts them (one rigid "
+                      "body)", ArticulationNote, stacklevel=4)
+    inertial = _summed_inertials(inertials)
     chosen = [p for p in pieces if p[0]] or pieces
     if not chosen:
         raise ObjectError(f"{label}: the body has no geoms")

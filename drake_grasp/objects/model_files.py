@@ -35,11 +35,11 @@ from drake_grasp.objects.mesh_files import (
     _centre_over_base, _load_checked_mesh, _lowest_resting_rotation, _model_name, _one_line, _scale_key,
     clearly_tips_over,
 )
-from drake_grasp.objects import packages, settling, sizes
-from drake_grasp.objects.readable_models import drake_readable_model, quiet_unsupported_elements
+from drake_grasp.objects import packages, rigid_assembly, settling, sizes
+from drake_grasp.objects.readable_models import drake_readable_model, has_visuals, quiet_unsupported_elements
 from drake_grasp.objects.pieces import _decompose
 from drake_grasp.objects.spec import (
-    DEFAULT_DENSITY, DEFAULT_MAX_PIECES, MIN_TIP_ANGLE, InertiaWarning, ObjectError, ObjectSpec, ShapePiece,
+    DEFAULT_DENSITY, DEFAULT_MAX_PIECES, MIN_TIP_ANGLE, InertiaWarning, MeshNote, ObjectError, ObjectSpec, ShapePiece,
     UnstablePoseWarning, YELLOW_PAPER_RGBA, _cached_hull_obj,
 )
 from drake_grasp.objects.mass_properties import (
@@ -52,27 +52,28 @@ from drake_grasp.objects.inertia_checks import (  # noqa: F401  (re-exported: mo
 
 
 def _piece_from_drake_shape(
-    shape: Shape, X_BG: RigidTransform, label: str, max_pieces: int
+    shape: Shape, X_BG: RigidTransform, label: str, max_pieces: int, scale: float = 1.0
 ) -> list[ShapePiece]:
-    """Pieces (posed in the body frame B) for one collision geometry of a parsed SDF."""
-    p = tuple(float(v) for v in X_BG.translation())
+    """Pieces (posed in the body frame B) for one collision geometry of a parsed SDF, every length
+    multiplied by `scale` (a command line's ``--scale``)."""
+    p = tuple(scale * float(v) for v in X_BG.translation())
     rpy = tuple(float(v) for v in RollPitchYaw(X_BG.rotation()).vector())
     if isinstance(shape, Sphere):
-        return [ShapePiece("sphere", (shape.radius(),), p, rpy)]
+        return [ShapePiece("sphere", (scale * shape.radius(),), p, rpy)]
     if isinstance(shape, Ellipsoid):
-        return [ShapePiece("ellipsoid", (shape.a(), shape.b(), shape.c()), p, rpy)]
+        return [ShapePiece("ellipsoid", tuple(scale * v for v in (shape.a(), shape.b(), shape.c())), p, rpy)]
     if isinstance(shape, Box):
-        return [ShapePiece("box", (shape.width(), shape.depth(), shape.height()), p, rpy)]
+        return [ShapePiece("box", tuple(scale * v for v in (shape.width(), shape.depth(), shape.height())), p, rpy)]
     if isinstance(shape, Cylinder):
-        return [ShapePiece("cylinder", (shape.radius(), shape.length()), p, rpy)]
+        return [ShapePiece("cylinder", (scale * shape.radius(), scale * shape.length()), p, rpy)]
     if isinstance(shape, Capsule):
-        return [ShapePiece("capsule", (shape.radius(), shape.length()), p, rpy)]
+        return [ShapePiece("capsule", (scale * shape.radius(), scale * shape.length()), p, rpy)]
     if isinstance(shape, Convex):
         hull = shape.GetConvexHull()  # Scaled, in G; works for every format Drake reads.
-        vertices = np.array([hull.vertex(i) for i in range(hull.num_vertices())])
+        vertices = scale * np.array([hull.vertex(i) for i in range(hull.num_vertices())])
         return [ShapePiece("convex", (), p, rpy, _cached_hull_obj("sdf_convex", vertices))]
     if isinstance(shape, Mesh):
-        scale = np.asarray(shape.scale3(), float)  # per axis: a model file may scale a mesh unevenly
+        scale = scale * np.asarray(shape.scale3(), float)  # per axis: a model file may scale a mesh unevenly
         mesh = _load_checked_mesh(Path(shape.source().path()), label, scale, one_body=True)
         key = hashlib.sha256(Path(shape.source().path()).read_bytes()).hexdigest()[:20]
         paths = _decompose(mesh, f"sdf_mesh-{key}-{_scale_key(scale)}-{max_pieces}", max_pieces, label)
@@ -80,7 +81,8 @@ def _piece_from_drake_shape(
     raise ObjectError(f"{label}: collision shape {type(shape).__name__} is not supported")
 
 
-def _one_mesh_mass_properties(geometries, label: str) -> tuple[float, np.ndarray, np.ndarray] | None:
+def _one_mesh_mass_properties(geometries, label: str, scale: float = 1.0
+                              ) -> tuple[float, np.ndarray, np.ndarray] | None:
     """(volume m³, centroid in B, unit inertia m² about it in B) of a body whose collision geometry
     is one mesh, exact from its solid (cached; sampling its convex pieces takes seconds); else None."""
     if len(geometries) != 1 or not isinstance(geometries[0][0], Mesh):
@@ -88,11 +90,12 @@ def _one_mesh_mass_properties(geometries, label: str) -> tuple[float, np.ndarray
     shape, X_BG = geometries[0]
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # its notes were given when its pieces were made
-        solid = _load_checked_mesh(Path(shape.source().path()), label, np.asarray(shape.scale3(), float),
+        solid = _load_checked_mesh(Path(shape.source().path()), label, scale * np.asarray(shape.scale3(), float),
                                    one_body=True)
     R_BG = X_BG.rotation().matrix()
     unit_inertia = np.asarray(solid.moment_inertia, float) / float(solid.mass)
-    return float(solid.volume), R_BG @ np.asarray(solid.center_mass) + X_BG.translation(), R_BG @ unit_inertia @ R_BG.T
+    return (float(solid.volume), R_BG @ np.asarray(solid.center_mass) + scale * X_BG.translation(),
+            R_BG @ unit_inertia @ R_BG.T)
 
 
 def _resting_rpy(points_B: np.ndarray, p_BScm: np.ndarray, label: str) -> tuple[float, float, float] | None:
@@ -203,8 +206,9 @@ def object_from_sdf(
     friction: float | None = None,
     inertia: str = "check",
     package_path=(),
+    scale: float = 1.0,
 ) -> ObjectSpec:
-    """An object from an SDFormat (or URDF) file with one model of one free body.
+    """An object from an SDFormat (or URDF) file with one model: its links as one rigid body.
 
     The file is parsed by Drake; its body's collision geometries become the pieces (non-convex
     meshes are decomposed like :func:`object_from_mesh`), its inertial gives mass, centre of mass
@@ -212,7 +216,9 @@ def object_from_sdf(
     the body's centre of mass with the body frame's axes; the object rests with its z up, or on its most
     stable face if it clearly tips over (`_resting_rpy`).
 
-    Limits: one model with one body and no joints (not welded, not articulated); the file's
+    Limits: one model. Its links become one rigid body (:mod:`drake_grasp.objects.rigid_assembly`):
+    links joined by fixed joints as one, an articulated object's moving joints held where the file
+    puts them (a note), a joint to the world left out (loaded free, a note). The file's
     visuals, friction and contact properties are replaced by ours (pieces drawn in `rgba`, the
     scene's ContactParameters; a compliant hydroelastic ``.vtk`` mesh is read as its boundary
     surface); a mesh Drake cannot read (STL, PLY, DAE, GLB) is read from an OBJ converted into the
@@ -235,6 +241,9 @@ def object_from_sdf(
             InertiaWarning), "file" (the file's; ObjectError if it cannot be simulated) or
             "geometry" (the collision geometry's at uniform density, with the file's mass).
         package_path: Folders holding a package.xml, or with package.xml files below them.
+        scale: Multiplies every length of the model (a command line's ``--scale``: a file in
+            millimetres, or PartNet-Mobility's unit-sized objects); the file's own masses are kept
+            (a density × volume mass scales with the cube), its inertias scale with the square.
 
     Raises:
         ObjectError: One line naming the file and the problem.
@@ -250,54 +259,62 @@ def object_from_sdf(
     where = non_finite_number(path)
     if where:
         raise ObjectError(f"{label}: {where} is not finite (NaN or inf)")
-    builder = DiagramBuilder()
-    plant, scene_graph = AddMultibodyPlantSceneGraph(builder, 0.0)
-    parser = Parser(plant)
-    local = packages.register_packages(parser.package_map(), path, package_path)
-    problem = packages.missing_package_problem(path.read_text(errors="replace"), parser.package_map(), local, path)
-    if problem:
-        raise ObjectError(f"{label}: {problem}")
     kind = path.suffix.lower().lstrip(".")
-    text = drake_readable_model(path, label, parser.package_map(), local) if kind in ("sdf", "urdf") else None
-    try:
-        with packages.quiet_downloads(), quiet_unsupported_elements():
-            if text is None:
-                models = parser.AddModels(str(path.resolve()))
-            else:
-                models = parser.AddModelsFromString(text, kind)
-    except Exception as error:  # Drake raises RuntimeError with multi-line messages.
-        message = str(error).replace(f"<literal-string>.{kind}", str(path.resolve()))
-        problem = (packages.download_problem(message, local) or _missing_file_problem(message)
-                   or f"cannot parse ({_one_line(message)})")
-        raise ObjectError(f"{label}: {problem}") from None
+
+    def parsed(visuals: bool):
+        builder = DiagramBuilder()
+        plant, scene_graph = AddMultibodyPlantSceneGraph(builder, 0.0)
+        parser = Parser(plant)
+        local = packages.register_packages(parser.package_map(), path, package_path)
+        problem = packages.missing_package_problem(path.read_text(errors="replace"), parser.package_map(), local, path)
+        if problem:
+            raise ObjectError(f"{label}: {problem}")
+        text = (drake_readable_model(path, label, parser.package_map(), local, visuals=visuals)
+                if kind in ("sdf", "urdf") else None)
+        try:
+            with packages.quiet_downloads(), quiet_unsupported_elements():
+                if text is None:
+                    models = parser.AddModels(str(path.resolve()))
+                else:
+                    models = parser.AddModelsFromString(text, kind)
+        except Exception as error:  # Drake raises RuntimeError with multi-line messages.
+            message = str(error).replace(f"<literal-string>.{kind}", str(path.resolve()))
+            problem = (packages.download_problem(message, local) or _missing_file_problem(message)
+                       or f"cannot parse ({_one_line(message)})")
+            if "xmlns:xacro" in path.read_text(errors="replace"):
+                problem += "; it is a xacro macro file (ROS): expand it first (`xacro FILE > object.urdf`)"
+            return None, problem
+        return (plant, scene_graph, models), None
+
+    found, problem = parsed(visuals=True)
+    if found is None and kind in ("sdf", "urdf") and has_visuals(path):
+        # The visuals are replaced by ours: one Drake cannot parse (pybullet takes "r, g, b a" for a
+        # colour, Drake four numbers) is no reason to refuse the object.
+        found, without = parsed(visuals=False)
+        if found is not None:
+            warnings.warn(f"{label}: its visual elements left out (Drake's parser: {problem}); drake-grasp draws "
+                          "its own", MeshNote, stacklevel=2)
+    if found is None:
+        raise ObjectError(f"{label}: {problem}")
+    plant, scene_graph, models = found
     if len(models) != 1:
         raise ObjectError(f"{label}: expected one model, found {len(models)}")
     (model,) = models
-    bodies = [plant.get_body(index) for index in plant.GetBodyIndices(model)]
-    if len(bodies) != 1:
-        raise ObjectError(f"{label}: expected one body, found {len(bodies)}")
-    if plant.GetJointIndices(model):
-        raise ObjectError(f"{label}: the body must be free (the model has joints or is static)")
-    (body,) = bodies
-    inspector = scene_graph.model_inspector()
-    geometries = [(inspector.GetShape(g), inspector.GetPoseInFrame(g))
-                  for g in plant.GetCollisionGeometriesForBody(body)]
+    assembly = rigid_assembly.rigid_assembly(plant, model, label)  # B: the root link's frame
+    geometries = assembly.collision_geometries(plant, scene_graph.model_inspector())
     pieces_B = []
     for shape, X_BG in geometries:
-        pieces_B += _piece_from_drake_shape(shape, X_BG, label, max_pieces)
+        pieces_B += _piece_from_drake_shape(shape, X_BG, label, max_pieces, scale)
     if not pieces_B:
         raise ObjectError(f"{label}: the body has no collision geometry")
     points = np.vstack([_piece_points(piece) for piece in pieces_B])
-    sizes.check_size(points, label, scalable=False)
-    file_mass = body.default_mass()
+    sizes.check_size(points, label, scale)
+    file_mass, p_BScm, file_inertia = assembly.mass_properties()  # a given mass does not scale; lengths do
+    p_BScm, file_inertia = scale * p_BScm, scale**2 * file_inertia
     mass_properties = None
     if file_mass > 0.0 and math.isfinite(file_mass):
-        p_BScm = np.asarray(body.default_com(), float)
-        unit_inertia_Bo = body.default_unit_inertia().CopyToFullMatrix3()
-        shift = np.dot(p_BScm, p_BScm) * np.eye(3) - np.outer(p_BScm, p_BScm)
-        file_inertia = file_mass * (unit_inertia_Bo - shift)  # About the centre of mass.
         pieces = tuple(pieces_B)
-        geometry = (_one_mesh_mass_properties(geometries, label) or
+        geometry = (_one_mesh_mass_properties(geometries, label, scale) or
                     (_mass_properties_summed(pieces) if len(pieces) == 1 else _mass_properties_sampled(pieces)))
         checked_mass, p_BScm, unit_inertia = checked_mass_properties(
             label, file_mass, p_BScm, file_inertia, geometry,

@@ -83,7 +83,7 @@ def resolve_user_object(
     inertia: str = "check", package_path=(), **kw
 ) -> ObjectSpec:
     """:func:`resolve_object` with the options that only object files take (a command line's
-    ``--scale``, ``--largest-component``, ``--join-gap``: mesh files, and MJCF for the join gap;
+    ``--scale``: mesh and model files; ``--largest-component``, ``--join-gap``: mesh files and MJCF;
     ``--inertia``: model files; ``--package-path``: SDF and URDF files): ObjectError if one is given
     for an object that does not take it."""
     text = str(name_or_path).strip()
@@ -97,7 +97,7 @@ def resolve_user_object(
             kinds = (f"model files ({MODEL_FORMATS})" if option == "inertia" else
                      "mesh files, MJCF models and GraspIt! bodies" if option == "join_gap" else
                      "SDF and URDF model files" if option == "package_path" else
-                     f"mesh files ({MESH_FORMATS}) and MJCF models")
+                     f"mesh files ({MESH_FORMATS}) and model files (SDF, URDF, MJCF)")
             raise ObjectError(f"{text}: {flag} applies to {kinds} only")
     if not (scale > 0.0 and math.isfinite(scale)):
         raise ObjectError(f"--scale must be positive, got {scale!r}")
@@ -139,13 +139,13 @@ def mesh_options(scale: float = 1.0, largest_component: bool = False, join_gap: 
 
 
 def options_for(name_or_path: str, **options) -> dict:
-    """Of `options` (:func:`mesh_options`'s keywords), those the object takes: scale,
-    largest_component and join_gap a mesh file or an ``.xml``/``.mjcf`` model (MJCF, or a GraspIt!
-    body, whose unit is fixed, millimetres: `_object_from_file` refuses a scale for it); inertia a
-    model file; package_path an SDF or URDF file (the ones that name ``package://`` URIs)."""
+    """Of `options` (:func:`mesh_options`'s keywords), those the object takes: scale a mesh or
+    model file (a GraspIt! body's unit is fixed, millimetres: `_object_from_file` refuses a scale for
+    it); largest_component and join_gap a mesh file or an ``.xml``/``.mjcf`` model (MJCF, or a
+    GraspIt! body); inertia a model file; package_path an SDF or URDF file (the ones that name ``package://`` URIs)."""
     text = str(name_or_path).strip()
     mjcf = is_model_file(text) and Path(text).suffix.lower() in (".xml", ".mjcf")
-    takes = {"scale": is_mesh_file(text) or mjcf, "largest_component": is_mesh_file(text) or mjcf,
+    takes = {"scale": is_mesh_file(text) or is_model_file(text), "largest_component": is_mesh_file(text) or mjcf,
              "join_gap": is_mesh_file(text) or mjcf, "inertia": is_model_file(text),
              "package_path": is_model_file(text) and not mjcf}
     return {k: v for k, v in options.items() if takes.get(k, False)}

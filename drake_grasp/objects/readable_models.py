@@ -78,7 +78,19 @@ def _converted_obj(mesh_path: Path, label: str) -> Path:
     return path.resolve()
 
 
-def drake_readable_model(path: Path, label: str, package_map, local: dict) -> str | None:
+_VISUAL = re.compile(r"<visual\b[^>]*?/>|<visual\b.*?</visual\s*>", re.DOTALL)
+_URDF_MATERIAL = re.compile(r"<material\b[^>]*?/>|<material\b.*?</material\s*>", re.DOTALL)
+
+
+def has_visuals(path: Path) -> bool:
+    """Whether an SDFormat or URDF file has a ``<visual>`` element (False if it is not XML)."""
+    try:
+        return any(True for _ in ElementTree.parse(path).getroot().iter("visual"))
+    except (ElementTree.ParseError, OSError):
+        return False
+
+
+def drake_readable_model(path: Path, label: str, package_map, local: dict, visuals: bool = True) -> str | None:
     """The text of an SDFormat or URDF file with each mesh Drake cannot read converted to an OBJ
     (:func:`_converted_obj`) and named by it, and an SDFormat model that is static (Gazebo holds it
     fixed: osrf/gazebo_models' ``hammer``) made free, with a :class:`StaticModelNote`: an object to
@@ -90,7 +102,9 @@ def drake_readable_model(path: Path, label: str, package_map, local: dict) -> st
     absolute ``file://`` URI (Drake refuses a bare path in a string); ``package://`` URIs are kept
     (the parser's PackageMap resolves them as before). Only the file-naming attributes and elements
     are rewritten (URDF ``filename``, SDFormat ``<uri>``), textually, so the rest of the file (its
-    ``drake:`` elements, comments, scales) reaches the parser unchanged."""
+    ``drake:`` elements, comments, scales) reaches the parser unchanged. Without `visuals`, the
+    file's ``<visual>`` elements (and a URDF's ``<material>``s, which only visuals use) are left out
+    too, and the text is always returned: for a file whose visuals Drake cannot parse."""
     try:
         root = ElementTree.parse(path).getroot()
     except (ElementTree.ParseError, OSError):
@@ -104,7 +118,7 @@ def drake_readable_model(path: Path, label: str, package_map, local: dict) -> st
                   if reference and Path(reference).suffix.lower() not in DRAKE_MESH_SUFFIXES}
     static = root.tag != "robot" and any((model.findtext("static") or "").strip().lower() in ("true", "1")
                                          for model in root.findall("model"))
-    if not unreadable and not static and not legacy:
+    if not unreadable and not static and not legacy and visuals:
         return None
     base = path.resolve().parent
 
@@ -126,6 +140,9 @@ def drake_readable_model(path: Path, label: str, package_map, local: dict) -> st
         return f"{start}{escape(rewritten(html.unescape(value).strip()))}{end}"
 
     text = path.read_text(errors="replace")
+    if not visuals:
+        text = _VISUAL.sub("", text)
+        text = _URDF_MATERIAL.sub("", text) if root.tag == "robot" else text
     if root.tag == "robot":
         return _URDF_FILENAME.sub(attribute, text)
     if legacy:

@@ -442,13 +442,12 @@ def _part_shells(mesh: trimesh.Trimesh, report: RepairReport, opened: list) -> l
     return shells
 
 
-def convex_piece_hull(mesh: trimesh.Trimesh) -> trimesh.Trimesh | None:
-    """The convex hull of a mesh whose vertices all lie on it (within 0.1 % of its extent) and which
-    encloses a volume, else None. A model file's collision mesh is often a convex piece of a
-    decomposition written with faces doubled or missing (pybullet's dinnerware: a plate's rim as six
-    8-vertex pieces of 16 triangles, none closed); Bullet and MuJoCo collide a mesh as its hull, and
-    so does Drake's point contact, so the hull is the solid the file means (`mesh_files` takes it for a
-    model file's collision mesh that `closed_shells` cannot close; a bare mesh file is still refused)."""
+def surface_hull(mesh: trimesh.Trimesh) -> trimesh.Trimesh | None:
+    """The convex hull of a mesh's vertices if it encloses a volume (not flat, not a line), else
+    None: what Bullet, MuJoCo and Drake's point contact collide a model file's collision mesh as,
+    whatever its triangles close. SAPIEN's PartNet-Mobility parts are open surfaces (a bottle's body
+    a shell without thickness, open at its neck), so for a model file's collision mesh that encloses
+    nothing, the hull is the only solid the file gives (`mesh_files` takes it, with a note)."""
     vertices = np.unique(np.asarray(mesh.vertices, float)[np.unique(np.asarray(mesh.faces))], axis=0)
     if len(vertices) < 4:
         return None
@@ -457,8 +456,21 @@ def convex_piece_hull(mesh: trimesh.Trimesh) -> trimesh.Trimesh | None:
     except Exception:  # qhull: the points are flat or a line
         return None
     extent = float(np.max(hull.extents))
-    if not hull.is_watertight or hull.volume <= (1e-3 * extent) ** 3:
+    return hull if hull.is_watertight and hull.volume > (1e-3 * extent) ** 3 else None
+
+
+def convex_piece_hull(mesh: trimesh.Trimesh) -> trimesh.Trimesh | None:
+    """The convex hull of a mesh whose vertices all lie on it (within 0.1 % of its extent) and which
+    encloses a volume, else None. A model file's collision mesh is often a convex piece of a
+    decomposition written with faces doubled or missing (pybullet's dinnerware: a plate's rim as six
+    8-vertex pieces of 16 triangles, none closed); Bullet and MuJoCo collide a mesh as its hull, and
+    so does Drake's point contact, so the hull is the solid the file means (`mesh_files` takes it for a
+    model file's collision mesh that `closed_shells` cannot close; a bare mesh file is still refused)."""
+    hull = surface_hull(mesh)
+    if hull is None:
         return None
+    vertices = np.unique(np.asarray(mesh.vertices, float)[np.unique(np.asarray(mesh.faces))], axis=0)
+    extent = float(np.max(hull.extents))
     normals, offsets = np.asarray(hull.face_normals), np.einsum("ij,ij->i", hull.face_normals, hull.triangles[:, 0])
     outside = vertices @ normals.T - offsets  # <= 0 inside every face's plane; 0 on the hull
     return hull if bool(np.all(outside.max(axis=1) > -1e-3 * extent)) else None

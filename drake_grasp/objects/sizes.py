@@ -93,13 +93,12 @@ def likely_units(extent: float, scale: float = 1.0) -> list[tuple[str, float]]:
     return [(unit, factor) for unit, factor in UNITS if low <= extent / scale * factor <= high]
 
 
-def _hint(extent: float, scale: float, scalable: bool = True) -> str:
-    """What to do about a size in the wrong unit: `--scale` for the files it applies to (mesh files,
-    MJCF), and for an SDF or URDF, which take no `--scale`, the scale of its mesh element."""
+def _hint(extent: float, scale: float) -> str:
+    """What to do about a size in the wrong unit: `--scale` (mesh and model files take it)."""
     units = likely_units(extent, scale)
     if scale != 1.0 and PLAUSIBLE_EXTENTS[0] <= extent / scale <= PLAUSIBLE_EXTENTS[1]:
         return f"is the file in metres already? drop --scale {scale:g}"
-    way = "--scale" if scalable else "a scale on the model's <mesh> elements"
+    way = "--scale"
     if extent < PLAUSIBLE_EXTENTS[0]:
         return f"is the file in metres? ({way} multiplies its coordinates)"
     if not units:
@@ -116,44 +115,42 @@ def _length(metres: float) -> str:
     return f"{metres * 1000:.3g} mm"
 
 
-def size_problem(smallest: float, largest: float, scale: float = 1.0, scalable: bool = True) -> str | None:
+def size_problem(smallest: float, largest: float, scale: float = 1.0) -> str | None:
     """Why an object file's object, of these widths (m, read with `scale`), cannot be grasped, or
     None: a size that is not finite, a largest extent outside GRASPABLE_EXTENTS, or a smallest width
-    above the hand's span. `scalable`: the file takes `--scale` (`_hint`)."""
+    above the hand's span."""
     if not (math.isfinite(smallest) and math.isfinite(largest)):
         return "its size is not finite (a coordinate is NaN or inf)"
     low, high = GRASPABLE_EXTENTS
     if largest > high:
         return (f"largest extent {_length(largest)}: more than the {_length(high)} a grasp here can take (the open "
-                f"hand spans {_length(hand_span())}); {_hint(largest, scale, scalable)}")
+                f"hand spans {_length(hand_span())}); {_hint(largest, scale)}")
     if largest < low:
         return (f"largest extent {_length(largest)}: less than the {_length(low)} the hand and camera resolve; "
-                f"{_hint(largest, scale, scalable)}")
+                f"{_hint(largest, scale)}")
     if smallest > hand_span():
         return (f"smallest width {_length(smallest)}: wider in every direction than the open hand "
-                f"({_length(hand_span())}), no grasp closes around it; {_hint(largest, scale, scalable)}")
+                f"({_length(hand_span())}), no grasp closes around it; {_hint(largest, scale)}")
     return None
 
 
-def size_warning(largest: float, scale: float = 1.0, scalable: bool = True) -> str | None:
+def size_warning(largest: float, scale: float = 1.0) -> str | None:
     """A warning for a graspable object whose size still suggests the wrong unit (largest extent
     below PLAUSIBLE_EXTENTS[0]), or None."""
     if largest < PLAUSIBLE_EXTENTS[0]:
         return (f"largest extent {_length(largest)}, smaller than the hand grasps reliably; "
-                f"{_hint(largest, scale, scalable)}")
+                f"{_hint(largest, scale)}")
     return None
 
 
-def check_size(points: np.ndarray, label: str, scale: float = 1.0, warn: bool = True,
-               scalable: bool = True) -> None:
+def check_size(points: np.ndarray, label: str, scale: float = 1.0, warn: bool = True) -> None:
     """ObjectError (one line starting with `label`) for an object file whose points (m) make an
     object no hand can grasp (:func:`size_problem`); a UnitsWarning (:func:`size_warning`) for one
-    that is small enough to be in the wrong unit, when `warn`. `scalable`: the file takes `--scale`
-    (an SDF or URDF does not: the hint names its mesh elements' scale)."""
+    that is small enough to be in the wrong unit, when `warn`."""
     smallest, largest = widths(points)
-    problem = size_problem(smallest, largest, scale, scalable)
+    problem = size_problem(smallest, largest, scale)
     if problem:
         raise ObjectError(f"{label}: {problem}")
-    message = size_warning(largest, scale, scalable) if warn else None
+    message = size_warning(largest, scale) if warn else None
     if message:
         warnings.warn(f"{label}: {message}", UnitsWarning, stacklevel=3)

@@ -119,6 +119,10 @@ class StaticModelNote(MeshNote):
     """A model file's model is static (its simulator holds it fixed); it was loaded as a free body."""
 
 
+class ArticulationNote(MeshNote):
+    """A model file's object is articulated; its moving joints are held where the file puts them."""
+
+
 class InertiaWarning(UserWarning):
     """A model file's inertia was implausible and was replaced by the collision geometry's."""
 

@@ -1,0 +1,123 @@
+"""A model file's links as one rigid object: links joined by fixed joints, and the links of an
+articulated object held where the file draws them.
+
+Object files as projects ship them are not always one link. A ROS or CAD export hangs the object's
+link under an empty ``base_link`` by a fixed joint; SAPIEN's PartNet-Mobility objects (the articulated
+objects of ManiSkill and Genesis) put an empty ``base`` link above a body link, and a bottle's cap or a
+box's lid on a revolute, continuous or prismatic joint; a mug can be a body and a handle welded
+together. Drake parses each link as a body of its own, joined by its joints.
+
+drake-grasp grasps one rigid object. So the links of one model become one rigid body:
+
+- links joined by fixed joints are one body, as every simulator treats them;
+- a moving joint (revolute, continuous, prismatic, ...) is held at its default position (Drake's
+  default context: zero, where the meshes sit as the file draws them; PartNet-Mobility's lids closed),
+  and an :class:`ArticulationNote` names the joints held, since a real lid would move in the hand;
+- a joint to the world (a model fixed in its scene) is left out, and the object loaded free, as a
+  static model is (a note).
+
+The assembly's inertia is the sum of its links' inertials, each moved into the root link's frame
+(the root: the link no joint of the model is a child of). Pure bookkeeping on Drake's parsed plant:
+geometry poses from SceneGraph's inspector, link poses from the plant's default context.
+"""
+
+from __future__ import annotations
+
+import warnings
+from dataclasses import dataclass
+
+import numpy as np
+from pydrake.math import RigidTransform
+
+from drake_grasp.objects.spec import ArticulationNote, ObjectError, StaticModelNote
+
+
+@dataclass(frozen=True)
+class RigidAssembly:
+    """One model's links as one rigid body, posed in the root link's frame R.
+
+    Attributes:
+        root: The root link (a Drake RigidBody): its frame is the object's body frame.
+        links: (link, X_RL) for every link of the model, the root's X_RL the identity.
+        held: The moving joints held at their default positions, as "revolute joint 'lid'".
+    """
+
+    root: object
+    links: tuple
+    held: tuple[str, ...]
+
+    def collision_geometries(self, plant, inspector) -> list:
+        """(shape, X_RG) of every collision geometry of every link, posed in the root's frame."""
+        return [(inspector.GetShape(g), X_RL @ inspector.GetPoseInFrame(g))
+                for link, X_RL in self.links for g in plant.GetCollisionGeometriesForBody(link)]
+
+    def mass_properties(self) -> tuple[float, np.ndarray, np.ndarray]:
+        """(mass kg, centre of mass in R m, inertia about it in R kg·m²) of the links' inertials
+        together; mass 0 (and a zero inertia) when no link carries one."""
+        mass, first_moment, inertia_Ro = 0.0, np.zeros(3), np.zeros((3, 3))
+        for link, X_RL in self.links:
+            m = float(link.default_mass())
+            if not (m > 0.0 and np.isfinite(m)):
+                continue
+            R = X_RL.rotation().matrix()
+            p_LScm = np.asarray(link.default_com(), float)
+            shift = np.dot(p_LScm, p_LScm) * np.eye(3) - np.outer(p_LScm, p_LScm)
+            inertia_Scm_R = R @ (m * (link.default_unit_inertia().CopyToFullMatrix3() - shift)) @ R.T
+            p_RScm = X_RL @ p_LScm
+            inertia_Ro += inertia_Scm_R + m * (np.dot(p_RScm, p_RScm) * np.eye(3) - np.outer(p_RScm, p_RScm))
+            first_moment += m * p_RScm
+            mass += m
+        if mass == 0.0:
+            return 0.0, np.zeros(3), np.zeros((3, 3))
+        p_RScm = first_moment / mass
+        return mass, p_RScm, inertia_Ro - mass * (np.dot(p_RScm, p_RScm) * np.eye(3) - np.outer(p_RScm, p_RScm))
+
+
+def rigid_assembly(plant, model, label: str) -> RigidAssembly:
+    """The links of `model` in the (not yet finalized) `plant` as one rigid body.
+
+    Finalizes the plant (the link poses come from its default context). Warns an ArticulationNote
+    for moving joints held, a StaticModelNote for a joint to the world left out.
+
+    Raises:
+        ObjectError: One line: the model has no link, or links joined to nothing (two objects).
+    """
+    links = [plant.get_body(index) for index in plant.GetBodyIndices(model)]
+    if not links:
+        raise ObjectError(f"{label}: the model has no link")
+    world = plant.world_body().index()
+    joints = [plant.get_joint(index) for index in plant.GetJointIndices(model)]
+    to_world = [j for j in joints if world in (j.parent_body().index(), j.child_body().index())]
+    among = [j for j in joints if j not in to_world]
+    children = {j.child_body().index() for j in among}
+    roots = [link for link in links if link.index() not in children]
+    if len(roots) != 1:
+        names = ", ".join(repr(link.name()) for link in roots)
+        raise ObjectError(f"{label}: {len(roots)} links joined to nothing ({names}): one object is expected; "
+                          "join them by fixed joints, or give one link's file")
+    moving = [j for j in among if j.type_name() != "weld"]
+    held = tuple(f"{_joint_kind(j)} joint {j.name()!r}" for j in moving)
+    if to_world:
+        warnings.warn(f"{label}: the model is fixed to the world in its file ({_joint_kind(to_world[0])} joint "
+                      f"{to_world[0].name()!r}); loaded as a free body", StaticModelNote, stacklevel=3)
+    if held:
+        shown = ", ".join(held[:4]) + (f" and {len(held) - 4} more" if len(held) > 4 else "")
+        warnings.warn(f"{label}: the object is articulated; its {shown} held where the file puts them "
+                      "(one rigid body)", ArticulationNote, stacklevel=3)
+    (root,) = roots
+    if len(links) == 1:
+        return RigidAssembly(root, ((root, RigidTransform()),), held)
+    try:
+        plant.Finalize()
+        context = plant.CreateDefaultContext()
+    except Exception as error:  # Drake raises RuntimeError with multi-line messages.
+        raise ObjectError(f"{label}: cannot assemble its links ({' '.join(str(error).split())})") from None
+    posed = tuple((link, plant.CalcRelativeTransform(context, root.body_frame(), link.body_frame()))
+                  for link in links)
+    return RigidAssembly(root, posed, held)
+
+
+def _joint_kind(joint) -> str:
+    """A joint's kind as a model file names it: Drake's "weld" is URDF's and SDFormat's "fixed"."""
+    kind = joint.type_name()
+    return "fixed" if kind == "weld" else kind
