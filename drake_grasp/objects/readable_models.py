@@ -157,10 +157,12 @@ def drake_readable_model(path: Path, label: str, package_map, local: dict, visua
 
 
 class _UnsupportedElement(logging.Filter):
-    """Drops Drake's "Ignoring unsupported SDFormat element" warnings (`quiet_unsupported_elements`)."""
+    """Drops Drake's "Ignoring unsupported SDFormat element" warnings, and its note that a ball joint's
+    axis is ignored (an object's joints are held: `rigid_assembly`) (`quiet_unsupported_elements`)."""
 
     def filter(self, record: logging.LogRecord) -> bool:
-        return "Ignoring unsupported SDFormat element" not in record.getMessage()
+        message = record.getMessage()
+        return "Ignoring unsupported SDFormat element" not in message and "ball joint axis will be ignored" not in message
 
 
 @contextlib.contextmanager
