@@ -264,6 +264,9 @@ def test_an_articulated_urdf_is_held_where_the_file_puts_it_and_two_objects_are_
     assert any("fixed to the world" in note for note in notes) and spec.mass == pytest.approx(0.1)
     two = _write_urdf(tmp_path / "two.urdf", _link("a", "0.04 0.04 0.04", 0.1) + _link("b", "0.04 0.04 0.04", 0.1))
     assert cli.main(["objects", "check", two]) == 2
+    stray = _write_urdf(tmp_path / "stray.urdf", _link("a", "0.04 0.04 0.04", 0.1) + '<link name="tool_frame"/>')
+    spec, notes = _load(type("Case", (), {"path": stray, "scale": 1.0}))  # an empty frame joined to nothing
+    assert spec.mass == pytest.approx(0.1)
 
 
 def test_a_urdf_collision_mesh_that_encloses_nothing_is_its_hull(tmp_path):

@@ -14,7 +14,8 @@ drake-grasp grasps one rigid object. So the links of one model become one rigid 
   default context: zero, where the meshes sit as the file draws them; PartNet-Mobility's lids closed),
   and an :class:`ArticulationNote` names the joints held, since a real lid would move in the hand;
 - a joint to the world (a model fixed in its scene) is left out, and the object loaded free, as a
-  static model is (a note).
+  static model is (a note);
+- an empty link joined to nothing (a leftover frame: no geometry, no mass) is not a part.
 
 The assembly's inertia is the sum of its links' inertials, each moved into the root link's frame
 (the root: the link no joint of the model is a child of). Pure bookkeeping on Drake's parsed plant:
@@ -90,7 +91,15 @@ def rigid_assembly(plant, model, label: str) -> RigidAssembly:
     to_world = [j for j in joints if world in (j.parent_body().index(), j.child_body().index())]
     among = [j for j in joints if j not in to_world]
     children = {j.child_body().index() for j in among}
-    roots = [link for link in links if link.index() not in children]
+    parents = {j.parent_body().index() for j in among}
+
+    def stray(link) -> bool:  # an empty link joined to nothing (a leftover frame): not a part
+        return (link.index() not in parents and not plant.GetCollisionGeometriesForBody(link)
+                and not link.default_mass() > 0.0)
+
+    roots = [link for link in links if link.index() not in children and not (len(links) > 1 and stray(link))]
+    kept = {link.index() for link in roots} | children
+    links = [link for link in links if link.index() in kept]
     if len(roots) != 1:
         names = ", ".join(repr(link.name()) for link in roots)
         raise ObjectError(f"{label}: {len(roots)} links joined to nothing ({names}): one object is expected; "
