@@ -300,6 +300,21 @@ def test_a_local_package_replaces_drakes_remote_one_and_package_path_finds_one_e
     assert spec.object_options() == {"package_path": (str(tmp_path / "mine"),)}
 
 
+def test_a_package_uri_without_a_package_xml_resolves_to_the_folder_beside_the_file(tmp_path):
+    """onshape-to-robot writes package://assets/part_1.stl beside an assets folder and no package.xml
+    (Genesis' blue_box): the folder of that name beside the file is the package, with a note."""
+    (tmp_path / "box" / "assets").mkdir(parents=True)
+    trimesh.creation.box((0.05, 0.06, 0.07)).export(tmp_path / "box" / "assets" / "part_1.stl")
+    urdf = tmp_path / "box" / "model.urdf"
+    urdf.write_text('<robot name="blue_box"><link name="part_1"><collision><geometry>'
+                    '<mesh filename="package://assets/part_1.stl"/></geometry></collision></link></robot>')
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        spec = resolve_user_object(str(urdf))
+    assert any("package://assets/ resolved to the folder" in str(w.message) for w in caught)
+    np.testing.assert_allclose(sorted(spec.extents), [0.05, 0.06, 0.07], atol=1e-6)
+
+
 # --- Sizes no hand can grasp, and NaN ----------------------------------------------------------
 
 

@@ -290,7 +290,9 @@ def object_from_sdf(
     if found is None and kind in ("sdf", "urdf") and has_visuals(path):
         # The visuals are replaced by ours: one Drake cannot parse (pybullet takes "r, g, b a" for a
         # colour, Drake four numbers) is no reason to refuse the object.
-        found, without = parsed(visuals=False)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", MeshNote)  # its notes were given by the first parse
+            found, without = parsed(visuals=False)
         if found is not None:
             warnings.warn(f"{label}: its visual elements left out (Drake's parser: {problem}); drake-grasp draws "
                           "its own", MeshNote, stacklevel=2)

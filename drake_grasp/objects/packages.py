@@ -25,6 +25,11 @@ model file's own folder if it is named NAME, or a folder NAME beside it, there o
 PACKAGE_SEARCH_LEVELS folders above (a checkout of a model collection needs nothing more); a folder
 NAME on the model path variables.
 
+A ``package://NAME/`` that no package.xml names resolves, like a Gazebo model, to a folder NAME beside
+the model file or above it (or under a ``--package-path`` DIR), with a note: onshape-to-robot writes
+``package://assets/part_1.stl`` beside an ``assets`` folder, and ROS descriptions are often copied
+without their package.xml; pybullet and Genesis resolve them so.
+
 A URI whose package or model is known neither locally nor remotely, or a remote package that cannot
 be downloaded, is an ObjectError that says where it was looked for and how to give it.
 """
@@ -35,10 +40,11 @@ import contextlib
 import logging
 import os
 import re
+import warnings
 import xml.etree.ElementTree as ElementTree
 from pathlib import Path
 
-from drake_grasp.objects.spec import ObjectError
+from drake_grasp.objects.spec import MeshNote, ObjectError
 
 PACKAGE_SEARCH_LEVELS = 8  # folders above a model file searched for package.xml (bounded: never the whole disk)
 _URI = re.compile(r"package://([A-Za-z0-9_.\-]+)/")
@@ -143,16 +149,17 @@ def register_packages(package_map, model_file: Path, package_path=()) -> dict[st
     name rooted at its folder, unless a package.xml of that name was found. Returns {name: package.xml
     or model folder} of what was registered."""
     try:
-        models = referenced_models(Path(model_file).read_text(errors="replace"))
+        text = Path(model_file).read_text(errors="replace")
     except OSError:
-        models = []
+        text = ""
+    models = referenced_models(text)
     local = packages_above(model_file)
     for directory in package_path:
         try:
             local.update(packages_under(Path(directory)))
         except ObjectError:
-            if not (models and Path(directory).expanduser().is_dir()):
-                raise  # a folder of Gazebo models needs no package.xml
+            if not ((models or referenced_packages(text)) and Path(directory).expanduser().is_dir()):
+                raise  # a folder of Gazebo models (or of package folders without package.xml) needs none
     for name, xml in local.items():
         if package_map.Contains(name):
             package_map.Remove(name)
@@ -163,6 +170,15 @@ def register_packages(package_map, model_file: Path, package_path=()) -> dict[st
             package_map.Remove(name)
         package_map.Add(name, str(folder))
         local[name] = folder
+    unknown = [name for name in referenced_packages(text) if name not in local and not package_map.Contains(name)]
+    for name, folder in gazebo_models(model_file, unknown, package_path, environ={}).items():
+        # No package.xml names it, but a folder of that name is beside the file or above it: CAD
+        # exporters (onshape-to-robot's package://assets/) and ROS descriptions copied without their
+        # package.xml mean that folder, and pybullet and Genesis resolve it so.
+        package_map.Add(name, str(folder))
+        local[name] = folder
+        warnings.warn(f"{model_file}: package://{name}/ resolved to the folder {folder} (no package.xml names "
+                      f"{name!r})", MeshNote, stacklevel=3)
     return local
 
 
