@@ -499,3 +499,28 @@ def test_a_urdf_still_in_xacro_is_told_to_expand_it(tmp_path, capsys):
     assert cli.main(["objects", "check", str(path)]) == 2
     (line,) = capsys.readouterr().err.strip().splitlines()
     assert "cannot parse" in line and "xacro FILE > object.urdf" in line
+
+
+def test_an_sdf_world_is_read_as_its_one_free_model_beside_a_static_scene(tmp_path, capsys):
+    """An SDFormat world with a static ground and one free model: the object is that model, the scene
+    left out with a note, as for MJCF. Two free models are refused in one line naming them."""
+    inertial = ("<inertial><mass>0.2</mass><inertia><ixx>1e-4</ixx><iyy>1e-4</iyy><izz>1e-4</izz><ixy>0</ixy>"
+                "<ixz>0</ixz><iyz>0</iyz></inertia></inertial>")
+
+    def model(name: str, static: bool, size: str) -> str:
+        return (f'<model name="{name}"><static>{str(static).lower()}</static><pose>0.5 0 0.05 0 0 0</pose>'
+                f'<link name="link">{inertial}<collision name="c"><geometry><box><size>{size}</size></box>'
+                "</geometry></collision></link></model>")
+
+    world = tmp_path / "scene.sdf"
+    world.write_text(f'<sdf version="1.7"><world name="w">{model("ground", True, "2 2 0.01")}'
+                     f'{model("block", False, "0.04 0.05 0.06")}</world></sdf>')
+    spec, notes = _load(type("Case", (), {"path": world, "scale": 1.0}))
+    assert any("the free model 'block'" in note and "'ground'" in note for note in notes)
+    np.testing.assert_allclose(sorted(spec.extents), [0.04, 0.05, 0.06], atol=1e-6)
+    two = tmp_path / "two.sdf"
+    two.write_text(f'<sdf version="1.7"><world name="w">{model("a", False, "0.04 0.04 0.04")}'
+                   f'{model("b", False, "0.04 0.04 0.04")}</world></sdf>')
+    assert cli.main(["objects", "check", str(two)]) == 2
+    (line,) = capsys.readouterr().err.strip().splitlines()
+    assert "expected one model, found 2 (2 free: 'a', 'b')" in line

@@ -299,9 +299,7 @@ def object_from_sdf(
     if found is None:
         raise ObjectError(f"{label}: {problem}")
     plant, scene_graph, models = found
-    if len(models) != 1:
-        raise ObjectError(f"{label}: expected one model, found {len(models)}")
-    (model,) = models
+    model = _the_object_model(plant, models, label)
     assembly = rigid_assembly.rigid_assembly(plant, model, label)  # B: the root link's frame
     geometries = assembly.collision_geometries(plant, scene_graph.model_inspector())
     pieces_B = []
@@ -344,6 +342,32 @@ def object_from_sdf(
         return spec_resting(rpy_TO)
     standing = spec_resting((0.0, 0.0, 0.0))
     return spec_resting(_settled_rpy(standing, points - np.asarray(p_BScm, float), label))
+
+
+def _the_object_model(plant, models: list, label: str):
+    """The model instance that is the object. One model is; among several (an SDFormat world: a
+    ground plane, a table, the object), the object is the one model not fixed to the world, as for
+    MJCF (`mjcf_files._the_object_body`): the others are the file's scene, left out with a note.
+    ObjectError (one line) when no model, or more than one, moves freely."""
+    if len(models) == 1:
+        return models[0]
+    world = plant.world_body().index()
+
+    def fixed(model) -> bool:  # Drake welds a static model's links to the world, in the model
+        return any(plant.get_joint(j).parent_body().index() == world for j in plant.GetJointIndices(model))
+
+    def names(group) -> str:
+        return ", ".join(repr(plant.GetModelInstanceName(m)) for m in group)
+
+    free = [m for m in models if not fixed(m)]
+    if len(free) != 1:
+        moving = f" ({len(free)} free: {names(free)})" if free else " (none free)"
+        raise ObjectError(f"{label}: expected one model, found {len(models)}{moving}; give a file with the object "
+                          "alone, or with one free model beside a static scene")
+    scene = [m for m in models if m != free[0]]
+    warnings.warn(f"{label}: the object is the free model {plant.GetModelInstanceName(free[0])!r}; {len(scene)} fixed "
+                  f"to the world (the file's scene: {names(scene)}) left out", MeshNote, stacklevel=3)
+    return free[0]
 
 
 def _missing_file_problem(error_text: str) -> str | None:
