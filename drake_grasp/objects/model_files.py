@@ -300,7 +300,7 @@ def object_from_sdf(
         raise ObjectError(f"{label}: {problem}")
     plant, scene_graph, models = found
     model = _the_object_model(plant, models, label)
-    assembly = rigid_assembly.rigid_assembly(plant, model, label)  # B: the root link's frame
+    assembly = rigid_assembly.rigid_assembly(plant, model, label, _declared_joints(path))  # B: the root link's frame
     geometries = assembly.collision_geometries(plant, scene_graph.model_inspector())
     pieces_B = []
     for shape, X_BG in geometries:
@@ -342,6 +342,15 @@ def object_from_sdf(
         return spec_resting(rpy_TO)
     standing = spec_resting((0.0, 0.0, 0.0))
     return spec_resting(_settled_rpy(standing, points - np.asarray(p_BScm, float), label))
+
+
+def _declared_joints(path: Path) -> dict[str, str]:
+    """{joint name: its type} as an SDFormat or URDF file writes them (empty if it is not XML)."""
+    try:
+        root = ElementTree.parse(path).getroot()
+    except (ElementTree.ParseError, OSError):
+        return {}
+    return {joint.get("name"): joint.get("type") for joint in root.iter("joint") if joint.get("name") and joint.get("type")}
 
 
 def _the_object_model(plant, models: list, label: str):

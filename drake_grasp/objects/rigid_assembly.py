@@ -74,8 +74,10 @@ class RigidAssembly:
         return mass, p_RScm, inertia_Ro - mass * (np.dot(p_RScm, p_RScm) * np.eye(3) - np.outer(p_RScm, p_RScm))
 
 
-def rigid_assembly(plant, model, label: str) -> RigidAssembly:
-    """The links of `model` in the (not yet finalized) `plant` as one rigid body.
+def rigid_assembly(plant, model, label: str, declared: dict[str, str] | None = None) -> RigidAssembly:
+    """The links of `model` in the (not yet finalized) `plant` as one rigid body. `declared`: each
+    joint's kind as the file names it ({name: "continuous"}), for the notes (Drake parses URDF's
+    continuous joint as a revolute one).
 
     Finalizes the plant (the link poses come from its default context). Warns an ArticulationNote
     for moving joints held, a StaticModelNote for a joint to the world left out.
@@ -105,9 +107,10 @@ def rigid_assembly(plant, model, label: str) -> RigidAssembly:
         raise ObjectError(f"{label}: {len(roots)} links joined to nothing ({names}): one object is expected; "
                           "join them by fixed joints, or give one link's file")
     moving = [j for j in among if j.type_name() != "weld"]
-    held = tuple(f"{_joint_kind(j)} joint {j.name()!r}" for j in moving)
+    declared = declared or {}
+    held = tuple(f"{_joint_kind(j, declared)} joint {j.name()!r}" for j in moving)
     if to_world:
-        warnings.warn(f"{label}: the model is fixed to the world in its file ({_joint_kind(to_world[0])} joint "
+        warnings.warn(f"{label}: the model is fixed to the world in its file ({_joint_kind(to_world[0], declared)} joint "
                       f"{to_world[0].name()!r}); loaded as a free body", StaticModelNote, stacklevel=3)
     if held:
         shown = ", ".join(held[:4]) + (f" and {len(held) - 4} more" if len(held) > 4 else "")
@@ -126,7 +129,8 @@ def rigid_assembly(plant, model, label: str) -> RigidAssembly:
     return RigidAssembly(root, posed, held)
 
 
-def _joint_kind(joint) -> str:
-    """A joint's kind as a model file names it: Drake's "weld" is URDF's and SDFormat's "fixed"."""
-    kind = joint.type_name()
+def _joint_kind(joint, declared: dict[str, str]) -> str:
+    """A joint's kind as the model file names it: as `declared`, else Drake's name ("weld" is URDF's
+    and SDFormat's "fixed")."""
+    kind = declared.get(joint.name()) or joint.type_name()
     return "fixed" if kind == "weld" else kind
