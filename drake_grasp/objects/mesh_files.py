@@ -98,6 +98,10 @@ def read_triangles(path: Path, label: str, file_type: str | None = None) -> trim
         else:  # Drake's tetrahedral volume
             vertices, faces = vtk_mesh.boundary_surface(*vtk_mesh.read_vtk(data, label))
     else:
+        if suffix in (".glb", ".gltf"):
+            problem = other_formats.gltf_compression_problem(path)
+            if problem:
+                raise ObjectError(f"{label}: {problem}")
         try:
             mesh = trimesh.load(path, file_type=file_type, force="mesh", process=False)
         except Exception as error:  # trimesh raises many types for unreadable files.

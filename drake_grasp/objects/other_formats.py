@@ -41,3 +41,46 @@ def advice(path: str | Path) -> str | None:
         if suffix in ADVICE:
             return ADVICE[suffix]
     return None
+
+
+# glTF extensions that compress a mesh's geometry: trimesh decodes Draco with the optional DracoPy and
+# meshopt not at all. Without a decoder it reads placeholder zeros (a "flat" mesh), so the file's own
+# `extensionsRequired` is what tells the user why.
+_GLTF_COMPRESSION = {
+    "KHR_draco_mesh_compression": ("DracoPy", "the optional DracoPy (`pip install DracoPy`) decodes it"),
+    "EXT_meshopt_compression": (None, "not decoded here"),
+}
+
+
+def gltf_required_extensions(path: str | Path) -> list[str]:
+    """The `extensionsRequired` of a glTF (`.gltf` JSON or `.glb` binary) file; [] if it names none or
+    cannot be read (the mesh reader then says why)."""
+    import json
+    import struct
+
+    try:
+        data = Path(path).read_bytes()
+        if data[:4] == b"glTF":  # GLB: a 12-byte header, then the JSON chunk (length, type, text)
+            length, kind = struct.unpack_from("<II", data, 12)
+            text = data[20:20 + length] if kind == 0x4E4F534A else b"{}"
+        else:
+            text = data
+        required = json.loads(text.decode("utf-8", errors="replace")).get("extensionsRequired", [])
+    except (OSError, ValueError, struct.error, AttributeError):
+        return []
+    return [str(name) for name in required] if isinstance(required, list) else []
+
+
+def gltf_compression_problem(path: str | Path) -> str | None:
+    """Why a glTF file's geometry cannot be read here (compressed by an extension that no installed
+    decoder reads), with what to do, or None."""
+    import importlib.util
+
+    for name in gltf_required_extensions(path):
+        if name in _GLTF_COMPRESSION:
+            module, how = _GLTF_COMPRESSION[name]
+            if module is not None and importlib.util.find_spec(module) is not None:
+                continue
+            return (f"its meshes are compressed (glTF extension {name}): {how}; or export the object without "
+                    "compression")
+    return None
