@@ -40,7 +40,9 @@ An object pressed against the palm fills the camera's view nearer than the camer
 seen it was taken for not held, opened on, and grasped again (novel seed 4096). A camera that is too
 near to range still sees the object in its colour (here, its label) image, and an object that did not
 rise with the hand lies 10 cm or more below the camera after the lift. So the object filling at least
-`TOO_NEAR_SHARE` of the image nearer than the range rose with the hand (`too_near_share`).
+`TOO_NEAR_SHARE` of the image nearer than the range rose with the hand (`too_near_share`), and a depth
+that grew over the lift on the few pixels still in range (the rim of the pressed region, which a held
+object's settling in the grasp moves onto its farther parts) is not taken for left behind.
 
 An object the camera sees none of is not held, though the fingers can hide a small one whole (a
 3.4 cm ring held by the flower grasp): the finger angles and motor torques were tried as the tie-break
@@ -362,8 +364,10 @@ def sense_hold(points_W: np.ndarray, top_before: float, lift_height: float,
     its depth grew by `LIFTED_FRACTION` of the lift height or more. With the camera's `intrinsics`,
     `hold_depths` also give how far it moved in the hand in any direction (`in_hand_shift`), against
     `slip_distance`, and how far it turned there (`in_hand_turn`), against `slip_angle_deg`. An object filling `too_near` (a share of the image) of at least `TOO_NEAR_SHARE`
-    nearer than the camera ranges rose with the hand, whatever the points seen say, and its turn is
-    recorded but not held against it."""
+    nearer than the camera ranges rose with the hand, whatever the points seen say: its turn is
+    recorded but not held against it, nor is a depth that grew over the lift (behaviour 0.48.0: a
+    blob and a handle held by the box grasp, pressed into the view, read 5-10 cm "left behind" from
+    the rim of the pressed region and were let go; novel seed 2230)."""
     expected = float(top_before) + LIFTED_FRACTION * float(lift_height)
     expected_bottom = float("nan") if table_z is None else float(table_z) + LIFTED_FRACTION * float(lift_height)
     pressed = too_near >= TOO_NEAR_SHARE
@@ -389,6 +393,10 @@ def sense_hold(points_W: np.ndarray, top_before: float, lift_height: float,
     rose_short = float("nan")
     if lift_depths is not None:
         rose_short = depth_change(*lift_depths)
-        held = held and not abs(rose_short) >= LIFTED_FRACTION * float(lift_height)
+        # Grown: left behind, unless the object is still pressed into the view (then it is in the hand,
+        # and its few pixels in range are the rim of the pressed region, which a millimetre's settling
+        # in the grasp moves onto farther parts of the object). Shrunk: fallen, pressed or not.
+        left_behind = rose_short >= LIFTED_FRACTION * float(lift_height) and not pressed
+        held = held and not left_behind and not rose_short <= -LIFTED_FRACTION * float(lift_height)
     return Sensed(bool(held), int(len(points_W)), top, expected, bottom, expected_bottom, slid, rose_short, moved,
                   too_near, turned)
