@@ -25,7 +25,7 @@ def add_mesh_options(p: argparse.ArgumentParser) -> None:
     """--scale, --largest-component, --join-gap, --inertia and --package-path, for every command that
     takes --object."""
     p.add_argument("--scale", type=float, default=1.0, metavar="S",
-                   help="multiply a mesh file's or an MJCF model's coordinates by S (e.g. 0.001 for a file in millimetres)")
+                   help="multiply a mesh or model file's coordinates by S (e.g. 0.001 for a file in millimetres)")
     p.add_argument("--largest-component", action="store_true",
                    help="a mesh of parts farther apart than the join gap: keep the largest (else an error)")
     p.add_argument("--join-gap", type=float, default=None, metavar="M",

@@ -141,6 +141,23 @@ def _mass_properties_summed(pieces: tuple[ShapePiece, ...]) -> tuple[float, np.n
     return volume, centroid, inertia / volume
 
 
+def combined_mass_properties(parts) -> tuple[float, np.ndarray, np.ndarray]:
+    """(mass kg, centre of mass m, inertia about it kg·m²) of rigidly joined parts, each given as
+    (mass, its centre of mass, its inertia about that centre), all in one frame: masses added, each
+    inertia moved to the joint centre of mass (parallel axes). One part is returned as it is. The
+    links of a model file (`rigid_assembly`) and an MJCF tree's <inertial>s combine so."""
+    parts = [(float(m), np.asarray(c, float), np.asarray(inertia, float)) for m, c, inertia in parts]
+    if len(parts) == 1:
+        return parts[0]
+    mass = sum(m for m, _, _ in parts)
+    com = sum(m * c for m, c, _ in parts) / mass
+    inertia = np.zeros((3, 3))
+    for m, c, inertia_part in parts:
+        d = c - com
+        inertia += inertia_part + m * (np.dot(d, d) * np.eye(3) - np.outer(d, d))
+    return mass, com, inertia
+
+
 def _mass_properties_sampled(
     pieces: tuple[ShapePiece, ...], samples: int = 1_500_000
 ) -> tuple[float, np.ndarray, np.ndarray]:

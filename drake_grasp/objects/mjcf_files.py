@@ -28,6 +28,8 @@ import numpy as np
 import trimesh
 
 from drake_grasp.objects.inertia_checks import _check_choice, checked_mass_properties
+from drake_grasp.objects.mass_properties import combined_mass_properties
+from drake_grasp.objects.rigid_assembly import articulation_message
 from drake_grasp.objects.mesh_files import _one_line, object_from_triangles, read_triangles
 from drake_grasp.objects.pieces import IMPORT_VERSION
 from drake_grasp.objects.spec import (ArticulationNote, DEFAULT_DENSITY, DEFAULT_MAX_PIECES, MeshNote, ObjectError, ObjectSpec,
@@ -256,21 +258,6 @@ def _the_object_body(label: str, bodies: list) -> list:
     return free
 
 
-def _summed_inertials(inertials: list) -> tuple | None:
-    """The bodies' <inertial>s (mass kg, centre of mass m, inertia about it kg·m², in the root body's
-    frame) as one rigid body's, or None if none gives one: masses added, inertias moved to the joint
-    centre of mass (parallel axes)."""
-    if len(inertials) <= 1:
-        return inertials[0] if inertials else None
-    mass = sum(m for m, _, _ in inertials)
-    com = sum(m * np.asarray(c) for m, c, _ in inertials) / mass
-
-    def parallel(offset):
-        return np.dot(offset, offset) * np.eye(3) - np.outer(offset, offset)
-
-    return mass, com, sum(I + m * parallel(np.asarray(c) - com) for m, c, I in inertials)
-
-
 def _read_mjcf(path: Path, label: str) -> tuple[trimesh.Trimesh, tuple[float, float], tuple | None, str]:
     """(collision mesh in the root body's frame, the geoms' mass (kg) as (their given masses, their
     density × volume in the file's unit, which a scale multiplies by its cube), the body's explicit
@@ -353,10 +340,8 @@ def _read_mjcf(path: Path, label: str) -> tuple[trimesh.Trimesh, tuple[float, fl
 
     walk(bodies[0], np.eye(4), bodies[0].get("childclass", "main"))
     if held:
-        shown = ", ".join(held[:4]) + (f" and {len(held) - 4} more" if len(held) > 4 else "")
-        warnings.warn(f"{label}: the object is articulated; its {shown} held where the file puts them (one rigid "
-                      "body)", ArticulationNote, stacklevel=4)
-    inertial = _summed_inertials(inertials)
+        warnings.warn(articulation_message(label, held), ArticulationNote, stacklevel=4)
+    inertial = combined_mass_properties(inertials) if inertials else None
     chosen = [p for p in pieces if p[0]] or pieces
     if not chosen:
         raise ObjectError(f"{label}: the body has no geoms")

@@ -292,7 +292,7 @@ def object_from_sdf(
         # colour, Drake four numbers) is no reason to refuse the object.
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", MeshNote)  # its notes were given by the first parse
-            found, without = parsed(visuals=False)
+            found, _ = parsed(visuals=False)
         if found is not None:
             warnings.warn(f"{label}: its visual elements left out (Drake's parser: {problem}); drake-grasp draws "
                           "its own", MeshNote, stacklevel=2)

@@ -442,13 +442,18 @@ def _part_shells(mesh: trimesh.Trimesh, report: RepairReport, opened: list) -> l
     return shells
 
 
+def _used_vertices(mesh: trimesh.Trimesh) -> np.ndarray:
+    """The distinct vertices the mesh's faces use (m)."""
+    return np.unique(np.asarray(mesh.vertices, float)[np.unique(np.asarray(mesh.faces))], axis=0)
+
+
 def surface_hull(mesh: trimesh.Trimesh) -> trimesh.Trimesh | None:
     """The convex hull of a mesh's vertices if it encloses a volume (not flat, not a line), else
     None: what Bullet, MuJoCo and Drake's point contact collide a model file's collision mesh as,
     whatever its triangles close. SAPIEN's PartNet-Mobility parts are open surfaces (a bottle's body
     a shell without thickness, open at its neck), so for a model file's collision mesh that encloses
     nothing, the hull is the only solid the file gives (`mesh_files` takes it, with a note)."""
-    vertices = np.unique(np.asarray(mesh.vertices, float)[np.unique(np.asarray(mesh.faces))], axis=0)
+    vertices = _used_vertices(mesh)
     if len(vertices) < 4:
         return None
     try:
@@ -469,7 +474,7 @@ def convex_piece_hull(mesh: trimesh.Trimesh) -> trimesh.Trimesh | None:
     hull = surface_hull(mesh)
     if hull is None:
         return None
-    vertices = np.unique(np.asarray(mesh.vertices, float)[np.unique(np.asarray(mesh.faces))], axis=0)
+    vertices = _used_vertices(mesh)
     extent = float(np.max(hull.extents))
     normals, offsets = np.asarray(hull.face_normals), np.einsum("ij,ij->i", hull.face_normals, hull.triangles[:, 0])
     outside = vertices @ normals.T - offsets  # <= 0 inside every face's plane; 0 on the hull

@@ -30,22 +30,20 @@ from dataclasses import dataclass
 import numpy as np
 from pydrake.math import RigidTransform
 
+from drake_grasp.objects.mass_properties import combined_mass_properties
 from drake_grasp.objects.spec import ArticulationNote, ObjectError, StaticModelNote
 
 
 @dataclass(frozen=True)
 class RigidAssembly:
-    """One model's links as one rigid body, posed in the root link's frame R.
+    """One model's links as one rigid body, posed in the root link's frame R (the frame of the link
+    no joint of the model is a child of: the object's body frame).
 
     Attributes:
-        root: The root link (a Drake RigidBody): its frame is the object's body frame.
-        links: (link, X_RL) for every link of the model, the root's X_RL the identity.
-        held: The moving joints held at their default positions, as "revolute joint 'lid'".
+        links: (link, X_RL) for every link of the model, the root first, its X_RL the identity.
     """
 
-    root: object
     links: tuple
-    held: tuple[str, ...]
 
     def collision_geometries(self, plant, inspector) -> list:
         """(shape, X_RG) of every collision geometry of every link, posed in the root's frame."""
@@ -54,8 +52,9 @@ class RigidAssembly:
 
     def mass_properties(self) -> tuple[float, np.ndarray, np.ndarray]:
         """(mass kg, centre of mass in R m, inertia about it in R kg·m²) of the links' inertials
-        together; mass 0 (and a zero inertia) when no link carries one."""
-        mass, first_moment, inertia_Ro = 0.0, np.zeros(3), np.zeros((3, 3))
+        together (`mass_properties.combined_mass_properties`); mass 0 (and a zero inertia) when no
+        link carries one."""
+        parts = []
         for link, X_RL in self.links:
             m = float(link.default_mass())
             if not (m > 0.0 and np.isfinite(m)):
@@ -63,15 +62,14 @@ class RigidAssembly:
             R = X_RL.rotation().matrix()
             p_LScm = np.asarray(link.default_com(), float)
             shift = np.dot(p_LScm, p_LScm) * np.eye(3) - np.outer(p_LScm, p_LScm)
-            inertia_Scm_R = R @ (m * (link.default_unit_inertia().CopyToFullMatrix3() - shift)) @ R.T
-            p_RScm = X_RL @ p_LScm
-            inertia_Ro += inertia_Scm_R + m * (np.dot(p_RScm, p_RScm) * np.eye(3) - np.outer(p_RScm, p_RScm))
-            first_moment += m * p_RScm
-            mass += m
-        if mass == 0.0:
-            return 0.0, np.zeros(3), np.zeros((3, 3))
-        p_RScm = first_moment / mass
-        return mass, p_RScm, inertia_Ro - mass * (np.dot(p_RScm, p_RScm) * np.eye(3) - np.outer(p_RScm, p_RScm))
+            parts.append((m, X_RL @ p_LScm, R @ (m * (link.default_unit_inertia().CopyToFullMatrix3() - shift)) @ R.T))
+        return combined_mass_properties(parts) if parts else (0.0, np.zeros(3), np.zeros((3, 3)))
+
+
+def articulation_message(label: str, held) -> str:
+    """The ArticulationNote's text for the moving joints `held` ("revolute joint 'lid'", ...)."""
+    shown = ", ".join(held[:4]) + (f" and {len(held) - 4} more" if len(held) > 4 else "")
+    return f"{label}: the object is articulated; its {shown} held where the file puts them (one rigid body)"
 
 
 def rigid_assembly(plant, model, label: str, declared: dict[str, str] | None = None) -> RigidAssembly:
@@ -113,20 +111,18 @@ def rigid_assembly(plant, model, label: str, declared: dict[str, str] | None = N
         warnings.warn(f"{label}: the model is fixed to the world in its file ({_joint_kind(to_world[0], declared)} joint "
                       f"{to_world[0].name()!r}); loaded as a free body", StaticModelNote, stacklevel=3)
     if held:
-        shown = ", ".join(held[:4]) + (f" and {len(held) - 4} more" if len(held) > 4 else "")
-        warnings.warn(f"{label}: the object is articulated; its {shown} held where the file puts them "
-                      "(one rigid body)", ArticulationNote, stacklevel=3)
+        warnings.warn(articulation_message(label, held), ArticulationNote, stacklevel=3)
     (root,) = roots
     if len(links) == 1:
-        return RigidAssembly(root, ((root, RigidTransform()),), held)
+        return RigidAssembly(((root, RigidTransform()),))
     try:
         plant.Finalize()
         context = plant.CreateDefaultContext()
     except Exception as error:  # Drake raises RuntimeError with multi-line messages.
         raise ObjectError(f"{label}: cannot assemble its links ({' '.join(str(error).split())})") from None
-    posed = tuple((link, plant.CalcRelativeTransform(context, root.body_frame(), link.body_frame()))
-                  for link in links)
-    return RigidAssembly(root, posed, held)
+    ordered = [root] + [link for link in links if link.index() != root.index()]
+    return RigidAssembly(tuple((link, plant.CalcRelativeTransform(context, root.body_frame(), link.body_frame()))
+                               for link in ordered))
 
 
 def _joint_kind(joint, declared: dict[str, str]) -> str:
