@@ -176,3 +176,21 @@ def test_a_camera_driven_trial_searches_the_funnels_on_what_its_depth_views_saw(
     assert search["paper_choice"] == record.chosen_grasp  # a cube: the box grasp's funnel is open
     assert search["funnels"]["box"]["primitive"] > 0
     assert record.success, record.summary()
+
+
+def test_a_sliver_of_the_observed_shape_is_left_out_of_its_spec():
+    """A piece too thin to be a solid for contact (a sliver the carving left) carries no contact: the
+    shape's spec keeps the other pieces (a repaired box with holes stopped its trial with an error
+    there), and a shape of slivers alone is refused."""
+    import itertools
+
+    from drake_grasp.funnel.observed_shape import ObservedShape
+    from drake_grasp.objects import ObjectError
+
+    cube = np.array(list(itertools.product((0.0, 0.04), (0.0, 0.04), (0.0, 0.06))))
+    sliver = np.array(list(itertools.product((0.04, 0.06), (0.0, 0.04), (0.06, 0.06 + 1e-7))))
+    shape = ObservedShape(pieces=(cube, sliver), centre=np.array([0.02, 0.02, 0.03]), table_z=0.0, block=0.01)
+    spec = shape.as_object_spec()
+    assert len(spec.pieces) == 1 and spec.volume == pytest.approx(0.04 * 0.04 * 0.06, rel=1e-6)
+    with pytest.raises(ObjectError, match="too thin"):
+        ObservedShape(pieces=(sliver,), centre=np.array([0.05, 0.02, 0.06]), table_z=0.0, block=0.01).as_object_spec()

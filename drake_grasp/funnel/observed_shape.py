@@ -43,7 +43,7 @@ from pydrake.math import RigidTransform
 
 from scipy.spatial import ConvexHull
 
-from drake_grasp.objects.spec import ObjectSpec, ShapePiece, _cached_hull_obj
+from drake_grasp.objects.spec import ObjectError, ObjectSpec, ShapePiece, _cached_hull_obj
 from drake_grasp.primitives import free_space, table_top
 
 LEVEL = 0.002  # m: heights are rounded to this step before columns merge
@@ -101,12 +101,22 @@ class ObservedShape:
         """The solid as an `ObjectSpec` in its frame O (resting in its nominal pose on the table), for
         `quasistatic.QuasiStaticHand`: one convex piece per strip (its hull, written once to the mesh
         cache). Mass and inertia are nominal (uniform density): quasi-static closing moves nothing,
-        and ε takes its centre of mass from `centre`."""
-        pieces = tuple(ShapePiece("convex", (), mesh_path=_cached_hull_obj("observed", points - self.centre))
-                       for points in self.pieces)
+        and ε takes its centre of mass from `centre`. A piece too thin to be a solid for contact (a
+        sliver the carving left: a repaired 6 × 5 × 9 cm box with holes stopped its trial with an error
+        there) carries no contact and is left out; ObjectError if none is left."""
+        pieces, solids = [], []
+        for corners in self.pieces:
+            try:
+                pieces.append(ShapePiece("convex", (), mesh_path=_cached_hull_obj("observed", corners - self.centre)))
+            except ObjectError:
+                continue
+            solids.append(corners)
+        if not pieces:
+            raise ObjectError("observed: every piece of the observed shape is too thin to be a solid for contact")
+        pieces = tuple(pieces)
         points = self.points - self.centre
         extents = np.ptp(points, axis=0)
-        volume = float(sum(ConvexHull(p).volume for p in self.pieces))
+        volume = float(sum(ConvexHull(p).volume for p in solids))
         mass = DENSITY * volume
         inertia = mass / 12.0 * np.array([extents[1] ** 2 + extents[2] ** 2, extents[0] ** 2 + extents[2] ** 2,
                                           extents[0] ** 2 + extents[1] ** 2])
