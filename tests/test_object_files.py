@@ -269,6 +269,22 @@ def test_an_articulated_urdf_is_held_where_the_file_puts_it_and_two_objects_are_
     assert spec.mass == pytest.approx(0.1)
 
 
+def test_a_urdf_floating_joint_is_held_where_the_file_puts_it_or_to_the_world_means_free(tmp_path):
+    """MultibodyPlant does not support URDF's floating joint (it would leave the child free at the world's
+    origin): between two links it is held at its origin like a moving joint (a note); from the world it
+    means a free body, as loaded, without a note."""
+    lidded = _write_urdf(tmp_path / "box.urdf", _link("base", "0.08 0.06 0.05", 0.2) + _link("lid", "0.08 0.06 0.01", 0.05)
+                         + _joint("floating", "base", "lid", "0 0 0.03"))
+    spec, notes = _load(type("Case", (), {"path": lidded, "scale": 1.0}))
+    assert any("articulated" in note and "floating joint 'lid_joint'" in note for note in notes)
+    np.testing.assert_allclose(sorted(spec.extents), [0.06, 0.06, 0.08], atol=1e-6)
+    assert spec.mass == pytest.approx(0.25)
+    free = _write_urdf(tmp_path / "free.urdf", '<link name="world"/>' + _link("block", "0.04 0.05 0.06", 0.1)
+                       + _joint("floating", "world", "block", "0 0 0.5"))
+    spec, notes = _load(type("Case", (), {"path": free, "scale": 1.0}))
+    assert not any("fixed to the world" in note or "articulated" in note for note in notes) and spec.mass == pytest.approx(0.1)
+
+
 def test_a_urdf_collision_mesh_that_encloses_nothing_is_its_hull(tmp_path):
     """SAPIEN's PartNet-Mobility parts are open surfaces (a bottle's wall without thickness). As the engines a
     model file is made for collide a mesh, the URDF's collision mesh is its convex hull (a note); the

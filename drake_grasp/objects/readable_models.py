@@ -35,6 +35,9 @@ _SDF_STATIC = re.compile(r"(<static\s*>)\s*(?:true|1)\s*(</static\s*>)", re.IGNO
 # <sdf>, and a model's elements read the same (pyrobosim ships its coke can in both).
 _GAZEBO_OPEN = re.compile(r"<gazebo(\s[^>]*)?>")
 _GAZEBO_CLOSE = re.compile(r"</gazebo\s*>")
+# A URDF joint of type "floating", which MultibodyPlant does not support (it warns and leaves the child
+# free, at the world's origin rather than where the joint puts it).
+_URDF_FLOATING = re.compile(r"""(<joint\b[^>]*?\btype\s*=\s*)(["'])floating\2""", re.DOTALL)
 
 
 def _reference_path(reference: str, base: Path, package_map, local: dict, label: str) -> Path:
@@ -95,8 +98,10 @@ def drake_readable_model(path: Path, label: str, package_map, local: dict, visua
     (:func:`_converted_obj`) and named by it, and an SDFormat model that is static (Gazebo holds it
     fixed: osrf/gazebo_models' ``hammer``) made free, with a :class:`StaticModelNote`: an object to
     grasp is one the hand can lift; a file of Gazebo's format before SDFormat 1.3 (the root
-    ``<gazebo version="1.2">``) is read as SDFormat 1.3. None if the file needs none of these (it is
-    then parsed as it is) or is not XML (the parser says why).
+    ``<gazebo version="1.2">``) is read as SDFormat 1.3, and a URDF joint of type ``floating``
+    (which MultibodyPlant does not support) is made ``fixed``: `rigid_assembly` holds it where the
+    file puts it, or, to the world, loads the object free as the file means. None if the file needs
+    none of these (it is then parsed as it is) or is not XML (the parser says why).
 
     The text is parsed from a string, not from its folder, so every other path it gives is made an
     absolute ``file://`` URI (Drake refuses a bare path in a string); ``package://`` URIs are kept
@@ -116,9 +121,10 @@ def drake_readable_model(path: Path, label: str, package_map, local: dict, visua
               for mesh in root.iter("mesh")}
     unreadable = {reference for reference in meshes
                   if reference and Path(reference).suffix.lower() not in DRAKE_MESH_SUFFIXES}
+    floating = root.tag == "robot" and any(joint.get("type") == "floating" for joint in root.iter("joint"))
     static = root.tag != "robot" and any((model.findtext("static") or "").strip().lower() in ("true", "1")
                                          for model in root.findall("model"))
-    if not unreadable and not static and not legacy and visuals:
+    if not unreadable and not static and not legacy and not floating and visuals:
         return None
     base = path.resolve().parent
 
@@ -143,8 +149,8 @@ def drake_readable_model(path: Path, label: str, package_map, local: dict, visua
     if not visuals:
         text = _VISUAL.sub("", text)
         text = _URDF_MATERIAL.sub("", text) if root.tag == "robot" else text
-    if root.tag == "robot":
-        return _URDF_FILENAME.sub(attribute, text)
+    if root.tag == "robot":  # a floating joint as a fixed one: `rigid_assembly` holds it where the file puts it
+        return _URDF_FILENAME.sub(attribute, _URDF_FLOATING.sub(r"\g<1>\g<2>fixed\g<2>", text))
     if legacy:
         warnings.warn(f"{label}: Gazebo's format before SDFormat 1.3 (root <gazebo version=\"{root.get('version')}\">), "
                       "read as SDFormat 1.3, whose model elements are the same", MeshNote, stacklevel=3)

@@ -69,7 +69,7 @@ class RigidAssembly:
 def articulation_message(label: str, held) -> str:
     """The ArticulationNote's text for the moving joints `held` ("revolute joint 'lid'", ...)."""
     shown = ", ".join(held[:4]) + (f" and {len(held) - 4} more" if len(held) > 4 else "")
-    return f"{label}: the object is articulated; its {shown} held where the file puts them (one rigid body)"
+    return f"{label}: the object is articulated; its {shown} held where the file puts {'it' if len(held) == 1 else 'them'} (one rigid body)"
 
 
 def rigid_assembly(plant, model, label: str, declared: dict[str, str] | None = None) -> RigidAssembly:
@@ -104,8 +104,11 @@ def rigid_assembly(plant, model, label: str, declared: dict[str, str] | None = N
         names = ", ".join(repr(link.name()) for link in roots)
         raise ObjectError(f"{label}: {len(roots)} links joined to nothing ({names}): one object is expected; "
                           "join them by fixed joints, or give one link's file")
-    moving = [j for j in among if j.type_name() != "weld"]
     declared = declared or {}
+    # A URDF floating joint reaches the plant as a weld (`readable_models.drake_readable_model`): held
+    # like a moving joint between links; to the world, it means what a free body is, so no note.
+    moving = [j for j in among if j.type_name() != "weld" or declared.get(j.name()) == "floating"]
+    to_world = [j for j in to_world if declared.get(j.name()) != "floating"]
     held = tuple(f"{_joint_kind(j, declared)} joint {j.name()!r}" for j in moving)
     if to_world:
         warnings.warn(f"{label}: the model is fixed to the world in its file ({_joint_kind(to_world[0], declared)} joint "
