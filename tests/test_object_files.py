@@ -540,3 +540,11 @@ def test_an_sdf_world_is_read_as_its_one_free_model_beside_a_static_scene(tmp_pa
     assert cli.main(["objects", "check", str(two)]) == 2
     (line,) = capsys.readouterr().err.strip().splitlines()
     assert "expected one model, found 2 (2 free: 'a', 'b')" in line
+
+
+def test_the_check_says_what_its_pieces_are(tmp_path, capsys):
+    """A model file of Drake's primitives has no mesh vertices to count: the check names its shapes
+    (it said "(0 vertices)")."""
+    path = _write_urdf(tmp_path / "block.urdf", _link("block", "0.05 0.05 0.05", 0.1))
+    assert cli.main(["objects", "check", path]) == 0
+    assert "1 convex piece for contact (a box)" in capsys.readouterr().out

@@ -11,6 +11,7 @@ spending a study on it. A refused file is the same one-line error a trial gives 
 
 from __future__ import annotations
 
+import collections
 import dataclasses
 import math
 import time
@@ -35,11 +36,21 @@ class CheckReport:
     inertia_source: str  # "mesh" (uniform density), "file" or "geometry (file's replaced)"
     principal_moments: tuple[float, float, float]  # kg·m² about the centre of mass
     pieces: int
-    piece_vertices: int
+    piece_vertices: int  # in the convex meshes
+    primitives: dict  # {kind: count} of the pieces that are Drake's primitives (a box, a sphere), not meshes
     rpy_TO: tuple[float, float, float]  # rad: how it rests on the table
     rest_height: float  # m: its centre of mass above the table
     load_time: float  # s, first load in this process
     cached_load_time: float  # s, the same load again (decomposition cached)
+
+    @property
+    def piece_summary(self) -> str:
+        """What the pieces are: "8 vertices", "a box", "a box and 2 cylinders; 120 vertices"."""
+        kinds = [f"{'a' if n == 1 else n} {kind}{'es' if n > 1 and kind == 'box' else 's' if n > 1 else ''}"
+                 for kind, n in sorted(self.primitives.items())]
+        shapes = " and ".join(filter(None, [", ".join(kinds[:-1]), kinds[-1] if kinds else ""]))
+        meshes = f"{self.piece_vertices} vertices" if self.piece_vertices or not shapes else ""
+        return "; ".join(filter(None, [shapes, meshes]))
 
     def lines(self) -> list[str]:
         """The report as the command prints it."""
@@ -50,8 +61,7 @@ class CheckReport:
                    f"({self.density:.0f} kg/m³)")
         moments = ", ".join(f"{m:.3g}" for m in self.principal_moments)
         out.append(f"  inertia from {self.inertia_source}: principal moments {moments} kg·m²")
-        out.append(f"  {self.pieces} convex piece{'s' if self.pieces != 1 else ''} for contact "
-                   f"({self.piece_vertices} vertices)")
+        out.append(f"  {self.pieces} convex piece{'s' if self.pieces != 1 else ''} for contact ({self.piece_summary})")
         roll, pitch, yaw = (math.degrees(a) for a in self.rpy_TO)
         pose = "with its z up" if max(abs(roll), abs(pitch)) < 1e-6 else f"turned roll {roll:.1f}°, pitch {pitch:.1f}°"
         out.append(f"  rests {pose}, centre of mass {self.rest_height * 100:.1f} cm above the table")
@@ -106,11 +116,12 @@ def check_object(argument: str, **options) -> tuple[ObjectSpec, CheckReport]:
     for piece in spec.pieces:
         if piece.mesh_path:
             vertices += sum(1 for line in Path(piece.mesh_path).read_text().splitlines() if line.startswith("v "))
+    primitives = collections.Counter(piece.kind for piece in spec.pieces if not piece.mesh_path)
     report = CheckReport(
         file=argument, notes=notes, extents=tuple(spec.extents), volume=spec.volume, mass=spec.mass,
         density=spec.mass / spec.volume if spec.volume > 0 else float("nan"), inertia_source=source,
         principal_moments=tuple(float(m) for m in np.linalg.eigvalsh(inertia)), pieces=len(spec.pieces),
-        piece_vertices=vertices, rpy_TO=tuple(spec.rpy_TO), rest_height=spec.rest_height, load_time=first,
+        piece_vertices=vertices, primitives=dict(primitives), rpy_TO=tuple(spec.rpy_TO), rest_height=spec.rest_height, load_time=first,
         cached_load_time=again)
     return spec, report
 
