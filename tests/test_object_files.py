@@ -285,6 +285,24 @@ def test_a_urdf_floating_joint_is_held_where_the_file_puts_it_or_to_the_world_me
     assert not any("fixed to the world" in note or "articulated" in note for note in notes) and spec.mass == pytest.approx(0.1)
 
 
+def test_a_mesh_path_one_folder_short_is_found_from_the_folder_above_with_a_note(tmp_path):
+    """furniture-bench's lamp parts sit in urdf/lamp/ but name ``../mesh/lamp/...``, a path written for
+    urdf/: the same path from one folder higher names the mesh, which is used (a note says so). A mesh
+    found nowhere is still refused in one line."""
+    mesh_dir = tmp_path / "mesh" / "lamp"
+    mesh_dir.mkdir(parents=True)
+    trimesh.creation.box((0.04, 0.05, 0.06)).export(mesh_dir / "bulb.obj")
+    (tmp_path / "urdf" / "lamp").mkdir(parents=True)
+    geometry = '<geometry><mesh filename="../mesh/lamp/{}"/></geometry>'
+    body = ('<link name="bulb"><visual>{g}</visual><collision>{g}</collision></link>')
+    path = _write_urdf(tmp_path / "urdf" / "lamp" / "bulb.urdf", body.format(g=geometry.format("bulb.obj")))
+    spec, notes = _load(type("Case", (), {"path": path, "scale": 1.0}))
+    assert any("not where the file says" in note and "1 folder higher" in note for note in notes)
+    np.testing.assert_allclose(sorted(spec.extents), [0.04, 0.05, 0.06], atol=1e-6)
+    missing = _write_urdf(tmp_path / "urdf" / "lamp" / "hood.urdf", body.format(g=geometry.format("hood.obj")))
+    assert cli.main(["objects", "check", missing]) == 2
+
+
 def test_a_urdf_collision_mesh_that_encloses_nothing_is_its_hull(tmp_path):
     """SAPIEN's PartNet-Mobility parts are open surfaces (a bottle's wall without thickness). As the engines a
     model file is made for collide a mesh, the URDF's collision mesh is its convex hull (a note); the

@@ -13,6 +13,7 @@ import hashlib
 import html
 import logging
 import math
+import os
 import re
 import warnings
 import xml.etree.ElementTree as ElementTree
@@ -38,6 +39,25 @@ _GAZEBO_CLOSE = re.compile(r"</gazebo\s*>")
 # A URDF joint of type "floating", which MultibodyPlant does not support (it warns and leaves the child
 # free, at the world's origin rather than where the joint puts it).
 _URDF_FLOATING = re.compile(r"""(<joint\b[^>]*?\btype\s*=\s*)(["'])floating\2""", re.DOTALL)
+
+
+# How many folders above a model file a relative mesh path that is not where the file says is looked
+# for again (furniture-bench's lamp parts sit one folder deeper than their `../mesh/...` paths assume).
+MISPLACED_MESH_LEVELS = 2
+
+
+def found_above(reference: str, base: Path) -> tuple[Path, int] | None:
+    """A relative mesh `reference` of a model file in the folder `base` that names no file there, but
+    does from one of the `MISPLACED_MESH_LEVELS` folders above: (that file, how many folders up), else
+    None. The whole relative path must match (``../mesh/lamp/lamp_bulb.obj``), not only the name, so
+    a file it finds is the one the file's author meant at another depth."""
+    if not reference or "://" in reference or Path(reference).is_absolute() or (base / reference).exists():
+        return None
+    for up, folder in enumerate(list(base.parents)[:MISPLACED_MESH_LEVELS], start=1):
+        candidate = folder / reference
+        if candidate.is_file():
+            return candidate.resolve(), up
+    return None
 
 
 def _reference_path(reference: str, base: Path, package_map, local: dict, label: str) -> Path:
@@ -122,13 +142,23 @@ def drake_readable_model(path: Path, label: str, package_map, local: dict, visua
     unreadable = {reference for reference in meshes
                   if reference and Path(reference).suffix.lower() not in DRAKE_MESH_SUFFIXES}
     floating = root.tag == "robot" and any(joint.get("type") == "floating" for joint in root.iter("joint"))
+    misplaced = {reference: found for reference in meshes
+                 if (found := found_above(reference, path.resolve().parent)) is not None}
     static = root.tag != "robot" and any((model.findtext("static") or "").strip().lower() in ("true", "1")
                                          for model in root.findall("model"))
-    if not unreadable and not static and not legacy and not floating and visuals:
+    if not unreadable and not static and not legacy and not floating and not misplaced and visuals:
         return None
     base = path.resolve().parent
 
+    for reference, (found, up) in sorted(misplaced.items()):
+        warnings.warn(f"{label}: mesh {reference} is not where the file says (looked for "
+                      f"{os.path.normpath(base / reference)}); the same path from {up} folder{'s' if up > 1 else ''} "
+                      f"higher names {found}, used", MeshNote, stacklevel=3)
+
     def rewritten(reference: str) -> str:
+        if reference in misplaced:
+            found = misplaced[reference][0]
+            return f"file://{_converted_obj(found, f'{label}: mesh {reference}') if reference in unreadable else found}"
         if reference in unreadable:
             mesh_path = _reference_path(reference, base, package_map, local, label)
             return f"file://{_converted_obj(mesh_path, f'{label}: mesh {reference}')}"
