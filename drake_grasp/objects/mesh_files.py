@@ -34,7 +34,7 @@ from drake_grasp.objects import (
     vtk_polydata,
 )
 from drake_grasp.objects.pieces import IMPORT_VERSION, _decompose
-from drake_grasp.objects.settling import stays_up_in_simulator
+from drake_grasp.objects.settling import SET_DOWN_TILT_DEG, base_margin_deg, stays_up_in_simulator
 from drake_grasp.objects.spec import (
     COACD_THRESHOLD, CONVEXITY_TOLERANCE, DEFAULT_DENSITY, DEFAULT_MAX_PIECES, MAX_FACES, MeshNote,
     MIN_TIP_ANGLE, ObjectError, ObjectSpec, PRIMITIVE_NAMES, STABLE_POSE_TOLERANCE, ShapePiece, UnstablePoseWarning,
@@ -261,6 +261,23 @@ def _rests_stably_upright(hull: trimesh.Trimesh, p_Ocm: np.ndarray) -> bool:
     if len(polygon) < 3:
         return False  # a point or an edge
     return _centre_over_base(polygon, p_Ocm, height)
+
+
+def _narrowly_upright(hull: trimesh.Trimesh, p_Ocm: np.ndarray) -> bool:
+    """Whether the object, resting with its frame's z up, does so only just: not a rounded body that
+    no pose lowers much (`_rests_stably_upright`'s sphere), and its centre of mass less than
+    `settling.SET_DOWN_TILT_DEG` inside its base's edges as seen from the centre, so that set down as
+    a hand sets a body down, that far from upright, it would fall. Such a body is set down in the
+    simulator (`stays_up_in_simulator`) before it is loaded standing: BulletArm's 3DNet zucchini, 22 cm
+    tall on a cut end 1.0° wide (the lowest-face test's limit is `MIN_TIP_ANGLE`, 1°), fell within the
+    trial's first second, while the camera looked. (Not every narrow base: dropped 2° tilted in the
+    simulator, a 7 × 2.7 × 17 cm box standing on end 6.4° inside its base falls too, and stands in trials.)"""
+    offsets = np.asarray(hull.vertices, float) - np.asarray(p_Ocm, float)
+    height = float(-offsets[:, 2].min())
+    distances = np.einsum("ij,ij->i", hull.face_normals, hull.triangles[:, 0] - p_Ocm)
+    if height - float(distances.min()) <= STABLE_POSE_TOLERANCE * float(np.max(hull.extents)):
+        return False
+    return base_margin_deg(offsets, np.array([0.0, 0.0, -1.0]), height) < SET_DOWN_TILT_DEG
 
 
 def _centre_over_base(base_xy: np.ndarray, p_Ocm: np.ndarray, height: float) -> bool:
@@ -505,6 +522,13 @@ def object_from_triangles(
                           closest_primitive=closest_primitive, rgba=rgba, friction=friction, source=source)
 
     standing = spec((0.0, 0.0, 0.0))
+    if (stable_pose is None and _rests_stably_upright(contact_mesh.convex_hull, centroid)
+            and _narrowly_upright(contact_mesh.convex_hull, centroid) and not stays_up_in_simulator(standing)):
+        # On its lowest face, but only just: set down as a hand sets it, it falls in the simulator.
+        warnings.warn(f"{label}: with its z up the object would tip over (its centre of mass is only just inside "
+                      "its base, and set down 2° from upright it falls); resting it on its most stable face",
+                      UnstablePoseWarning, stacklevel=2)
+        stable_pose = True
     if stable_pose is None and not _rests_stably_upright(contact_mesh.convex_hull, centroid):
         # A scanned base is not one plane (YCB's cans and bottles stand on a bulge or a rim): where the
         # lowest-face test sees an edge or a point but a base of vertices near it carries the body, the
