@@ -121,8 +121,8 @@ def check_object(argument: str, **options) -> tuple[ObjectSpec, CheckReport]:
         file=argument, notes=notes, extents=tuple(spec.extents), volume=spec.volume, mass=spec.mass,
         density=spec.mass / spec.volume if spec.volume > 0 else float("nan"), inertia_source=source,
         principal_moments=tuple(float(m) for m in np.linalg.eigvalsh(inertia)), pieces=len(spec.pieces),
-        piece_vertices=vertices, primitives=dict(primitives), rpy_TO=tuple(spec.rpy_TO), rest_height=spec.rest_height, load_time=first,
-        cached_load_time=again)
+        piece_vertices=vertices, primitives=dict(primitives), rpy_TO=tuple(spec.rpy_TO),
+        rest_height=spec.rest_height, load_time=first, cached_load_time=again)
     return spec, report
 
 

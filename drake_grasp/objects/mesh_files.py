@@ -248,10 +248,9 @@ def _rests_stably_upright(hull: trimesh.Trimesh, p_Ocm: np.ndarray) -> bool:
     or a point) over which its centre of mass lies, at least MIN_TIP_ANGLE inside its edges as seen
     from the centre, or so that no resting pose lowers its centre of mass by more than
     STABLE_POSE_TOLERANCE of its size (a sphere, rolling off the vertex its tessellation stands on)."""
-    height = float(p_Ocm[2] - hull.vertices[:, 2].min())
-    distances = np.einsum("ij,ij->i", hull.face_normals, hull.triangles[:, 0] - p_Ocm)
-    if height - float(distances.min()) <= STABLE_POSE_TOLERANCE * float(np.max(hull.extents)):
+    if _rolls_little(hull, p_Ocm):
         return True
+    height = float(p_Ocm[2] - hull.vertices[:, 2].min())
     down = np.array([0.0, 0.0, -1.0])
     z_min = float(hull.vertices[:, 2].min())
     bottom = (hull.face_normals @ down > 1.0 - 1e-6) & (np.abs(hull.triangles[:, :, 2] - z_min).max(axis=1) < 1e-6)
@@ -263,6 +262,15 @@ def _rests_stably_upright(hull: trimesh.Trimesh, p_Ocm: np.ndarray) -> bool:
     return _centre_over_base(polygon, p_Ocm, height)
 
 
+def _rolls_little(hull: trimesh.Trimesh, p_Ocm: np.ndarray) -> bool:
+    """Whether no resting pose lowers the centre of mass, from where it stands with the frame's z up,
+    by more than STABLE_POSE_TOLERANCE of the object's size: a sphere, rolling off the vertex its
+    tessellation stands on."""
+    height = float(p_Ocm[2] - hull.vertices[:, 2].min())
+    distances = np.einsum("ij,ij->i", hull.face_normals, hull.triangles[:, 0] - p_Ocm)
+    return height - float(distances.min()) <= STABLE_POSE_TOLERANCE * float(np.max(hull.extents))
+
+
 def _narrowly_upright(hull: trimesh.Trimesh, p_Ocm: np.ndarray) -> bool:
     """Whether the object, resting with its frame's z up, does so only just: not a rounded body that
     no pose lowers much (`_rests_stably_upright`'s sphere), and its centre of mass less than
@@ -272,12 +280,10 @@ def _narrowly_upright(hull: trimesh.Trimesh, p_Ocm: np.ndarray) -> bool:
     tall on a cut end 1.0° wide (the lowest-face test's limit is `MIN_TIP_ANGLE`, 1°), fell within the
     trial's first second, while the camera looked. (Not every narrow base: dropped 2° tilted in the
     simulator, a 7 × 2.7 × 17 cm box standing on end 6.4° inside its base falls too, and stands in trials.)"""
-    offsets = np.asarray(hull.vertices, float) - np.asarray(p_Ocm, float)
-    height = float(-offsets[:, 2].min())
-    distances = np.einsum("ij,ij->i", hull.face_normals, hull.triangles[:, 0] - p_Ocm)
-    if height - float(distances.min()) <= STABLE_POSE_TOLERANCE * float(np.max(hull.extents)):
+    if _rolls_little(hull, p_Ocm):
         return False
-    return base_margin_deg(offsets, np.array([0.0, 0.0, -1.0]), height) < SET_DOWN_TILT_DEG
+    offsets = np.asarray(hull.vertices, float) - np.asarray(p_Ocm, float)
+    return base_margin_deg(offsets, np.array([0.0, 0.0, -1.0]), float(-offsets[:, 2].min())) < SET_DOWN_TILT_DEG
 
 
 def _centre_over_base(base_xy: np.ndarray, p_Ocm: np.ndarray, height: float) -> bool:

@@ -142,14 +142,12 @@ def drake_readable_model(path: Path, label: str, package_map, local: dict, visua
     unreadable = {reference for reference in meshes
                   if reference and Path(reference).suffix.lower() not in DRAKE_MESH_SUFFIXES}
     floating = root.tag == "robot" and any(joint.get("type") == "floating" for joint in root.iter("joint"))
-    misplaced = {reference: found for reference in meshes
-                 if (found := found_above(reference, path.resolve().parent)) is not None}
+    base = path.resolve().parent
+    misplaced = {reference: found for reference in meshes if (found := found_above(reference, base)) is not None}
     static = root.tag != "robot" and any((model.findtext("static") or "").strip().lower() in ("true", "1")
                                          for model in root.findall("model"))
     if not unreadable and not static and not legacy and not floating and not misplaced and visuals:
         return None
-    base = path.resolve().parent
-
     for reference, (found, up) in sorted(misplaced.items()):
         warnings.warn(f"{label}: mesh {reference} is not where the file says (looked for "
                       f"{os.path.normpath(base / reference)}); the same path from {up} folder{'s' if up > 1 else ''} "
