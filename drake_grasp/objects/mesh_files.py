@@ -528,18 +528,19 @@ def object_from_triangles(
                           closest_primitive=closest_primitive, rgba=rgba, friction=friction, source=source)
 
     standing = spec((0.0, 0.0, 0.0))
-    if (stable_pose is None and _rests_stably_upright(contact_mesh.convex_hull, centroid)
-            and _narrowly_upright(contact_mesh.convex_hull, centroid) and not stays_up_in_simulator(standing)):
+    hull = contact_mesh.convex_hull
+    upright = stable_pose is None and _rests_stably_upright(hull, centroid)
+    if upright and _narrowly_upright(hull, centroid) and not stays_up_in_simulator(standing):
         # On its lowest face, but only just: set down as a hand sets it, it falls in the simulator.
         warnings.warn(f"{label}: with its z up the object would tip over (its centre of mass is only just inside "
                       "its base, and set down 2° from upright it falls); resting it on its most stable face",
                       UnstablePoseWarning, stacklevel=2)
         stable_pose = True
-    if stable_pose is None and not _rests_stably_upright(contact_mesh.convex_hull, centroid):
+    if stable_pose is None and not upright:
         # A scanned base is not one plane (YCB's cans and bottles stand on a bulge or a rim): where the
         # lowest-face test sees an edge or a point but a base of vertices near it carries the body, the
         # station's simulator says whether it stands.
-        if not clearly_tips_over(contact_mesh.convex_hull, centroid) and stays_up_in_simulator(standing):
+        if not clearly_tips_over(hull, centroid) and stays_up_in_simulator(standing):
             return standing
         warnings.warn(f"{label}: with its z up the object would tip over (it rests on an edge or a point, "
                       "or its centre of mass is not over its base); resting it on its most stable face",
@@ -547,4 +548,4 @@ def object_from_triangles(
         stable_pose = True
     if not stable_pose:
         return standing
-    return spec(tuple(RollPitchYaw(_lowest_resting_rotation(contact_mesh.convex_hull, centroid)).vector()))
+    return spec(tuple(RollPitchYaw(_lowest_resting_rotation(hull, centroid)).vector()))

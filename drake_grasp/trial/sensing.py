@@ -397,6 +397,7 @@ def sense_hold(points_W: np.ndarray, top_before: float, lift_height: float,
         # and its few pixels in range are the rim of the pressed region, which a millimetre's settling
         # in the grasp moves onto farther parts of the object). Shrunk: fallen, pressed or not.
         left_behind = rose_short >= LIFTED_FRACTION * float(lift_height) and not pressed
-        held = held and not left_behind and not rose_short <= -LIFTED_FRACTION * float(lift_height)
+        fallen = rose_short <= -LIFTED_FRACTION * float(lift_height)
+        held = held and not left_behind and not fallen
     return Sensed(bool(held), int(len(points_W)), top, expected, bottom, expected_bottom, slid, rose_short, moved,
                   too_near, turned)
