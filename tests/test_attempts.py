@@ -36,8 +36,13 @@ def test_an_object_pressed_against_the_palm_is_held_though_no_depth_is_read():
     top, lift = 0.20, 0.10
     sensed = sense_hold(np.zeros((0, 3)), top, lift, 0.0, too_near=too_near)
     assert sensed.held and sensed.pixels == 0 and sensed.too_near == pytest.approx(too_near)
-    # The object filling a tenth of the view too near (an edge of it against the lens) is not enough.
-    assert not sense_hold(np.zeros((0, 3)), top, lift, 0.0, too_near=0.1).held
+    # With nothing in range, a tenth of the view too near is in the hand too: an object left on the
+    # table lies a lift height below the camera. A few stray pixels are not enough.
+    assert sense_hold(np.zeros((0, 3)), top, lift, 0.0, too_near=0.1).held
+    assert not sense_hold(np.zeros((0, 3)), top, lift, 0.0, too_near=0.005).held
+    # Where points are in range, half the view too near decides, as before: the points' heights do.
+    low = np.column_stack([np.zeros(50), np.zeros(50), np.linspace(0.0, 0.02, 50)])
+    assert not sense_hold(low, top, lift, 0.0, too_near=0.1).held
 
 
 def test_a_tall_object_held_from_above_is_seen_held_by_its_sides():
