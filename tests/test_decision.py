@@ -201,6 +201,22 @@ def test_a_round_object_takes_the_spherical_grasp_where_the_box_leads():
     assert choose_shape(near) == "sphere" and decision_margin(near) == pytest.approx(0.4)
 
 
+def test_a_tall_round_object_takes_the_sphere_from_a_narrower_footprint():
+    from drake_grasp.primitives.round_sides import (WIDE_FOOTPRINT, WIDE_TALL_FOOTPRINT, wide_middle,
+                                                    wide_resemblance)
+
+    # A blob 16 cm tall on a 19 cm footprint is wide; a ring 8.5 cm tall on the same footprint is not.
+    blob, ring = wide_resemblance([0.22, 0.19], 0.16), wide_resemblance([0.22, 0.19], 0.085)
+    assert blob > 0.95 and ring < 0.05
+    assert wide_middle(0.3) == pytest.approx(WIDE_TALL_FOOTPRINT, abs=1e-6)
+    assert wide_middle(0.05) == pytest.approx(WIDE_FOOTPRINT, abs=1e-6)
+    assert wide_middle(math.nan) == WIDE_FOOTPRINT  # a height not known: the rule of 0.38.0
+    # A flask standing 20.7 cm tall on 13.6 cm keeps the box; union 2410_008 (16.6 cm) too.
+    assert wide_resemblance([0.136, 0.136], 0.207) < 0.01 and wide_resemblance([0.238, 0.166], 0.156) < 0.5
+    res = {"sphere": 0.05, "cylinder": 0.01, "box": 0.95, "flat": 0.1, "upright": 0.0, "low": 0.0, "round": 1.0}
+    assert choose_shape({**res, "wide": blob}) == "sphere" and choose_shape({**res, "wide": ring}) == "box"
+
+
 def test_a_round_object_narrower_than_the_box_grasp_wraps_keeps_the_box():
     from drake_grasp.primitives.round_sides import WIDE_FOOTPRINT, wide_resemblance
 

@@ -27,7 +27,8 @@ known table), so it decides first:
       footprint), the **sphere** instead, if the object is wide and not low (b.): the box resemblance
       saturates on every irregular solid, and three fingers round a ring or a blob wider than the box
       grasp wraps (the wide resemblance, `primitives.round_sides`, at least `WIDE_THRESHOLD`: the
-      footprint's shorter side over 21 cm) hold it where two against one slip; a narrower round object
+      footprint's shorter side over 21 cm, or over 17 cm for an object taller than the fingertips'
+      sweep, behaviour 0.50.0) hold it where two against one slip; a narrower round object
       keeps the box, which held more real files than the sphere did (docs/design.md §5.4j, behaviour
       0.38.0; without a wide resemblance, every round object, as before). A sphere already used up
       (`exclude`) leaves the box. A low round

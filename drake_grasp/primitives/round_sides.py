@@ -42,6 +42,23 @@ So the middle is between the groups measured: 20 cm, where the two grasps tie, a
 the spherical grasp holds. On 16 YCB models it was not chosen on, the change is even (the six it
 touches: the box grasp 8/12, the spherical 9/12).
 
+**Tall and wide** (behaviour 0.50.0): for an object taller than the fingertips' sweep (`low.LOW_HEIGHT`,
+10.4 cm), the step's middle moves to `WIDE_TALL_FOOTPRINT` (17 cm), blended by a logistic step up in the
+height (width `low.LOW_WIDTH`). The box grasp's fingertips sweep 10.4 cm below the top; on a round solid
+taller than that they likely close above its widest line, on sides that slope away under them (a reason
+not checked contact by contact), and such solids of 0.3-1 kg slipped out. Measured camera-driven, the grasp forced, trial seeds 1-2, one attempt, on the
+round generated objects 13-20 cm tall of novel seeds 1201 and 1301 (behaviour 0.37.0) and 2405-2410
+(0.49.0; docs/results/holding/round_rule.md), by the estimated footprint's shorter side:
+
+* 17-21 cm (11 blobs and unions): the spherical grasp 13/22, the box grasp 4/22;
+* 13-17 cm (9 objects): the spherical grasp 15/18, the box grasp 14/18, a tie; and on real files of
+  that size the box grasp held what the spherical grasp dropped (GraspIt!'s flasks, 13.6 cm);
+* two rings lower than the sweep (8-9 cm tall, 19.5 cm across): both grasps 4/4, so a low object keeps
+  21 cm.
+
+So the middle for tall objects is 17 cm, between the tie below (union 2410_008, 16.6 cm: the box grasp
+2/2, the spherical 0/2) and the spherical grasp's lead above.
+
 **Thin and round-sided** (`thin_round_resemblance`): the same round sides without the compact footprint,
 on an object lower than `THIN_ROUND_HEIGHT` (3.2 cm) that the flower grasp can land round (its
 footprint's shorter side under `low.FLOWER_MAX_WIDTH`). A bar, a tube or an elongated pebble lying
@@ -57,7 +74,7 @@ import math
 import numpy as np
 
 from drake_grasp.primitives.flat import step_down
-from drake_grasp.primitives.low import lower_than
+from drake_grasp.primitives.low import LOW_HEIGHT, LOW_WIDTH, lower_than
 
 ROUND_RISE = 0.004  # m
 ROUND_RISE_WIDTH = 0.0007  # m
@@ -65,6 +82,7 @@ COMPACT_RATIO = 1.6
 COMPACT_RATIO_WIDTH = 0.05
 WIDE_FOOTPRINT = 0.21  # m
 WIDE_FOOTPRINT_WIDTH = 0.005  # m
+WIDE_TALL_FOOTPRINT = 0.17  # m, the middle for an object taller than the fingertips' sweep
 THIN_ROUND_HEIGHT = 0.032  # m
 THIN_ROUND_HEIGHT_WIDTH = 0.003  # m
 
@@ -85,20 +103,32 @@ def table_top_roundness(estimate) -> float:
     return round_resemblance(float(estimate.edge_rise), np.asarray(estimate.extents_sides, float)[:2])
 
 
-def wide_resemblance(footprint) -> float:
+def wide_resemblance(footprint, height: float = math.nan) -> float:
     """How much a footprint spanning `footprint` (m, its two horizontal sides) is wider than the box grasp
-    wraps, in [0, 1]: a logistic step up in its shorter side, 1/2 at `WIDE_FOOTPRINT` (module
-    docstring); NaN when a side is not finite or not positive."""
+    wraps, in [0, 1]: a logistic step up in its shorter side, 1/2 at `WIDE_FOOTPRINT`, or nearer
+    `WIDE_TALL_FOOTPRINT` the more the object, `height` m tall, stands above the fingertips' sweep
+    (module docstring; a height not known: `WIDE_FOOTPRINT`); NaN when a side is not finite or not
+    positive."""
     footprint = np.asarray(footprint, float)
     if footprint.size == 0 or not np.all(np.isfinite(footprint)) or np.min(footprint) <= 0.0:
         return math.nan
-    return 1.0 - step_down(float(np.min(footprint)), WIDE_FOOTPRINT, WIDE_FOOTPRINT_WIDTH)
+    return 1.0 - step_down(float(np.min(footprint)), wide_middle(height), WIDE_FOOTPRINT_WIDTH)
+
+
+def wide_middle(height: float) -> float:
+    """The wide step's middle (m) for an object `height` m tall: `WIDE_FOOTPRINT` below the fingertips'
+    sweep, `WIDE_TALL_FOOTPRINT` above it, blended by a logistic step in the height; `WIDE_FOOTPRINT`
+    when the height is not finite."""
+    if not math.isfinite(height):
+        return WIDE_FOOTPRINT
+    taller = 1.0 - step_down(float(height), LOW_HEIGHT, LOW_WIDTH)
+    return WIDE_FOOTPRINT + (WIDE_TALL_FOOTPRINT - WIDE_FOOTPRINT) * taller
 
 
 def table_top_wideness(estimate) -> float:
     """`wide_resemblance` of a table-top estimate (`table_top.TableTopEstimate`): the spans along its
-    footprint's sides."""
-    return wide_resemblance(np.asarray(estimate.extents_sides, float)[:2])
+    footprint's sides, and its height."""
+    return wide_resemblance(np.asarray(estimate.extents_sides, float)[:2], float(estimate.height))
 
 
 def round_sided(edge_rise: float) -> float:
