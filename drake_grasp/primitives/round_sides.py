@@ -46,9 +46,10 @@ touches: the box grasp 8/12, the spherical 9/12).
 10.4 cm), the step's middle moves to `WIDE_TALL_FOOTPRINT` (17 cm), blended by a logistic step up in the
 height (width `low.LOW_WIDTH`). The box grasp's fingertips sweep 10.4 cm below the top; on a round solid
 taller than that they likely close above its widest line, on sides that slope away under them (a reason
-not checked contact by contact), and such solids of 0.3-1 kg slipped out. Measured camera-driven, the grasp forced, trial seeds 1-2, one attempt, on the
-round generated objects 13-20 cm tall of novel seeds 1201 and 1301 (behaviour 0.37.0) and 2405-2410
-(0.49.0; docs/results/holding/round_rule.md), by the estimated footprint's shorter side:
+not checked contact by contact), and such solids of 0.3-1 kg slipped out. Measured camera-driven, the
+grasp forced, trial seeds 1-2, one attempt, on the round generated objects 13-20 cm tall of novel seeds
+1201 and 1301 (behaviour 0.37.0) and 2405-2410 (0.49.0; docs/results/holding/round_rule.md), by the
+estimated footprint's shorter side:
 
 * 17-21 cm (11 blobs and unions): the spherical grasp 13/22, the box grasp 4/22;
 * 13-17 cm (9 objects): the spherical grasp 15/18, the box grasp 14/18, a tie; and on real files of
@@ -74,7 +75,7 @@ import math
 import numpy as np
 
 from drake_grasp.primitives.flat import step_down
-from drake_grasp.primitives.low import LOW_HEIGHT, LOW_WIDTH, lower_than
+from drake_grasp.primitives.low import low_resemblance, lower_than
 
 ROUND_RISE = 0.004  # m
 ROUND_RISE_WIDTH = 0.0007  # m
@@ -121,7 +122,7 @@ def wide_middle(height: float) -> float:
     when the height is not finite."""
     if not math.isfinite(height):
         return WIDE_FOOTPRINT
-    taller = 1.0 - step_down(float(height), LOW_HEIGHT, LOW_WIDTH)
+    taller = 1.0 - low_resemblance(float(height))  # no footprint: the height's step alone
     return WIDE_FOOTPRINT + (WIDE_TALL_FOOTPRINT - WIDE_FOOTPRINT) * taller
 
 
