@@ -223,16 +223,22 @@ def settle_in_simulator(spec, contact=None, tilt_deg: float = 0.0) -> tuple[Rota
     diagram = builder.Build()
     simulator = Simulator(diagram)
     context = plant.GetMyContextFromRoot(simulator.get_context())
-    rested = False
-    t = 0.0
-    while t < SETTLE_TIME - 1e-9:
-        t += SETTLE_CHECK
-        simulator.AdvanceTo(t)
-        velocity = body.EvalSpatialVelocityInWorld(context)
-        if t >= 2 * SETTLE_CHECK and max(np.linalg.norm(velocity.rotational()),
-                                         np.linalg.norm(velocity.translational())) < REST_SPEED:
-            rested = True
-            break
+    rested = advance_to_rest(simulator, body, context)
     R_WO = body.EvalPoseInWorld(context).rotation()
     down_O = R_WO.inverse() @ np.array([0.0, 0.0, -1.0])
     return resting_rotation(down_O), rested
+
+
+def advance_to_rest(simulator: Simulator, body, plant_context, max_time: float = SETTLE_TIME) -> bool:
+    """Advances `simulator` from time 0 in steps of SETTLE_CHECK until `body` (whose plant's context is
+    `plant_context`) moves slower than REST_SPEED, looked at from the second step on, or `max_time`
+    (s) has passed; returns whether it came to rest."""
+    t = 0.0
+    while t < max_time - 1e-9:
+        t += SETTLE_CHECK
+        simulator.AdvanceTo(t)
+        velocity = body.EvalSpatialVelocityInWorld(plant_context)
+        if t >= 2 * SETTLE_CHECK and max(np.linalg.norm(velocity.rotational()),
+                                         np.linalg.norm(velocity.translational())) < REST_SPEED:
+            return True
+    return False

@@ -6,8 +6,10 @@ the wrist camera sees whether the object rose with the hand and stayed put in it
 simulator's contacts and the object's true pose are not sensors). When it does not, or when the arm
 could not reach any candidate of the grasp, the next attempt begins:
 
-* the hand opens and the arm goes back to the exploration's start (not simulated: the next attempt's
-  simulation starts with the arm there and the object lying where the last one left it, at rest);
+* the hand opens and the arm goes back to the exploration's start; the object, if the hand still held
+  it, falls onto the table (`release.let_fall`: simulated with the table alone, in the scenario's
+  physics), and the next attempt's simulation starts with the arm at the exploration's start and the
+  object at rest where it came to lie;
 * a fresh look: the whole exploration again, because the object may have moved (dropped, pushed,
   tipped over);
 * the next candidate: the decision runs without the grasps that already failed on this object
@@ -34,9 +36,13 @@ from pydrake.math import RollPitchYaw
 from drake_grasp.control.arm_motion import UNREACHABLE
 from drake_grasp.estimate_error import EstimateError
 from drake_grasp.objects import ObjectSpec
+from drake_grasp.objects.drake_model import with_mass_scale
+from drake_grasp.protocol import TrialVariation
 from drake_grasp.station import Scenario
 from drake_grasp.trial.compliant import _compliant_record, run_compliant_branches
+from drake_grasp.trial.execution import apply_variation
 from drake_grasp.trial.record import TrialRecord
+from drake_grasp.trial.release import let_fall
 
 
 def attempt_summary(record: TrialRecord) -> dict:
@@ -63,6 +69,10 @@ def run_compliant_attempts(scenario: Scenario, spec: ObjectSpec, *, seed: int, a
     done: list[TrialRecord] = []
     failed_grasps: list[str] = []
     current = scenario
+    # The object as each attempt's station simulates it (the trial seed's friction, the scenario's mass
+    # scale): what falls when the hand lets go.
+    _, falling = apply_variation(scenario, with_mass_scale(spec, scenario.object.mass_scale),
+                                 TrialVariation.draw(seed, scenario.protocol))
     for k in range(attempts):
         (trial,) = run_compliant_branches(current, spec, seed=seed, grasps=[None],
                                           replay_html=replay_html if k == attempts - 1 else None,
@@ -74,8 +84,8 @@ def run_compliant_attempts(scenario: Scenario, spec: ObjectSpec, *, seed: int, a
             break
         if record.grasp:
             failed_grasps.append(record.grasp)
-        if trial.run is not None and trial.run.X_WO_end is not None:  # the object stays where it was left
-            X = trial.run.X_WO_end
+        if trial.run is not None and trial.run.X_WO_end is not None:  # let go: it falls and comes to rest
+            X = let_fall(current, falling, trial.run.X_WO_end)
             pose = [*map(float, X.translation()), *map(float, RollPitchYaw(X.rotation()).vector())]
             current = dataclasses.replace(current, object=dataclasses.replace(current.object, pose=pose))
     last = dataclasses.replace(done[-1])
