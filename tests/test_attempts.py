@@ -275,12 +275,13 @@ def test_the_decision_runs_without_the_grasps_that_failed():
     assert choose_shape(resemblances, exclude=("flat", "box", "sphere", "cylinder")) == "box"
 
 
-def test_the_flower_grasp_is_tried_twice_the_second_time_turned():
+def test_the_flower_grasp_is_tried_three_times_the_second_time_turned():
     from drake_grasp.funnel.planning import retry_plan, tries_left
     from drake_grasp.grasps import GraspPlan, GraspType
 
     assert tries_left("precision", ()) and tries_left("precision", ("precision",))
-    assert not tries_left("precision", ("precision", "box", "precision"))
+    assert tries_left("precision", ("precision", "box", "precision"))
+    assert not tries_left("precision", ("precision", "precision", "precision"))
     assert tries_left("box", ("precision",)) and not tries_left("box", ("box",))
     plan = GraspPlan(GraspType.PRECISION, 0.0, RigidTransform([0.5, 0.0, 0.1]))
     assert retry_plan(plan, ()) is plan

@@ -14,8 +14,8 @@ could not reach any candidate of the grasp, the next attempt begins:
   tipped over);
 * the next candidate: the decision runs without the grasps that already failed on this object
   (`primitives.decision.choose_shape`'s `exclude`), so the next attempt executes the next grasp in the
-  decision's order, at its own best pose on the new estimate. The flower grasp alone gets a second
-  try, turned a half-turn about its approach, before the decision runs without it
+  decision's order, at its own best pose on the new estimate. The flower grasp alone gets three
+  tries, the second turned a half-turn about its approach, before the decision runs without it
   (`funnel.planning.TRIES`): the from-above grasps cannot reach the small and thin objects it is for.
   An upright object has two grasps in turn, the box grasp from above and then the wrap from the arm's
   side (`funnel.planning.grasp_of`).
