@@ -9,9 +9,9 @@ perception (`perception`), the station builder (`station`), trials (`trial`), th
 """
 
 # The release: raised when the public interface changes (modules moved or removed: CHANGELOG.md).
-__version__ = "0.52.0"
+__version__ = "0.53.0"
 
 # What a trial does: part of every stored record's fingerprint (sweeps/fingerprint.py). Raised whenever
 # a change alters what a trial measures in any scenario, and only then, so that a release that only
 # moves modules keeps every stored study record valid (docs/design.md §5.8).
-BEHAVIOUR_VERSION = "0.52.0"
+BEHAVIOUR_VERSION = "0.53.0"

@@ -1,5 +1,6 @@
 """The decision rule (primitives.decision): flatness decides first, then the paper's argmax."""
 
+import dataclasses
 import math
 
 import pytest
@@ -215,6 +216,50 @@ def test_a_tall_round_object_takes_the_sphere_from_a_narrower_footprint():
     assert wide_resemblance([0.136, 0.136], 0.207) < 0.01 and wide_resemblance([0.238, 0.166], 0.156) < 0.5
     res = {"sphere": 0.05, "cylinder": 0.01, "box": 0.95, "flat": 0.1, "upright": 0.0, "low": 0.0, "round": 1.0}
     assert choose_shape({**res, "wide": blob}) == "sphere" and choose_shape({**res, "wide": ring}) == "box"
+
+
+def test_a_tall_round_object_takes_the_cylindrical_grasp_round_a_level_axis():
+    """Step 3a (behaviour 0.53.0): a round object taller than the fingertips' sweep takes the cylinder where
+    the box leads, wide or not; the cylinder used up, the wide step as before; a low one is untouched."""
+    import numpy as np
+
+    from drake_grasp.funnel.planning import choose_grasp
+    from drake_grasp.primitives.estimate import ObjectEstimate
+    from drake_grasp.primitives.low import LOW_HEIGHT
+    from drake_grasp.primitives.round_sides import tall_resemblance, wide_resemblance
+
+    blob, ring = tall_resemblance(0.16), tall_resemblance(0.085)
+    assert blob > 0.99 and ring < 0.01 and tall_resemblance(LOW_HEIGHT) == pytest.approx(0.5)
+    assert math.isnan(tall_resemblance(math.nan))
+    res = {"sphere": 0.3, "cylinder": 0.01, "box": 0.7, "flat": 0.0, "upright": 0.0, "low": 0.0, "round": 1.0}
+    narrow, wide = wide_resemblance([0.17, 0.16], 0.16), wide_resemblance([0.22, 0.19], 0.16)
+    assert choose_shape({**res, "tall": blob, "wide": narrow}) == "cylinder"
+    assert choose_shape({**res, "tall": blob, "wide": wide}) == "cylinder"
+    assert choose_shape({**res, "tall": blob, "wide": wide}, exclude=("cylinder",)) == "sphere"
+    assert choose_shape({**res, "tall": blob, "wide": narrow}, exclude=("cylinder",)) == "box"
+    assert choose_shape({**res, "tall": ring, "wide": wide}) == "sphere"  # lower than the sweep: as before
+    assert choose_shape({**res, "tall": blob, "round": 0.0}) == "box"  # vertical sides: the box
+    assert choose_shape({**res, "tall": blob, "sphere": 0.9}) == "sphere"  # the paper's sphere keeps its grasp
+    assert choose_shape({k: v for k, v in res.items() if k != "round"} | {"tall": blob}) == "box"
+    # The margin: bounded by the tall resemblance's distance from its threshold.
+    assert decision_margin({**res, "tall": 0.7, "wide": 0.0}) == pytest.approx(0.4)
+    # Executed round a level axis, the palm coming straight down on the top, though the silhouettes
+    # read the blob elongated along a tilted axis.
+    tilted = np.array([math.cos(0.6), 0.0, math.sin(0.6)])
+    estimate = ObjectEstimate(
+        status="ok", centre=np.array([0.55, 0.0, 0.08]), depth=0.35, camera_position=np.array([0.55, 0.0, 0.45]),
+        axes=np.column_stack([tilted, [0.0, 1.0, 0.0], np.cross(tilted, [0.0, 1.0, 0.0])]),
+        extents=np.array([0.18, 0.17, 0.16]), principal_axis=tilted,
+        resemblances={**res, "tall": blob, "wide": narrow})
+    choice = choose_grasp(estimate, estimate.as_grasp_estimate())
+    assert choice.chosen == choice.executed == choice.plan.grasp.value == "cylindrical"
+    R = choice.plan.X_WP_target.rotation().matrix()
+    assert R[2, 2] < -0.99  # the approach straight down
+    assert abs(R[:, 0] @ [1.0, 0.0, 0.0]) > 0.99  # the wrapped axis: the tilted one, laid level
+    forced = choose_grasp(estimate, estimate.as_grasp_estimate(), forced="cylindrical")
+    assert forced.plan.X_WP_target.rotation().matrix()[2, 2] < -0.99
+    shorter = dataclasses.replace(estimate, resemblances={**res, "tall": ring, "wide": narrow})
+    assert choose_grasp(shorter, shorter.as_grasp_estimate()).executed == "box"
 
 
 def test_a_round_object_narrower_than_the_box_grasp_wraps_keeps_the_box():

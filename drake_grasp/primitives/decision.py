@@ -24,7 +24,12 @@ known table), so it decides first:
 
    a. where it picks the box and the round resemblance (`primitives.round_sides`, from the table-top
       estimate) is at least `ROUND_THRESHOLD` (1/2: sides that curve away below the top, on a compact
-      footprint), the **sphere** instead, if the object is wide and not low (b.): the box resemblance
+      footprint), the **cylinder** if the object is tall (the tall resemblance, `primitives.round_sides`,
+      at least `TALL_THRESHOLD`: taller than the fingertips' sweep, 10.4 cm; behaviour 0.53.0): its grasp
+      puts the palm on the top and wraps the fingers round a level axis (`funnel.planning.choose_grasp`),
+      below the widest line of a tall round solid that the box grasp's fingertips close above
+      (docs/design.md §5.4j). A cylinder already used up leaves the rule below. Otherwise the
+      **sphere** instead, if the object is wide and not low (b.): the box resemblance
       saturates on every irregular solid, and three fingers round a ring or a blob wider than the box
       grasp wraps (the wide resemblance, `primitives.round_sides`, at least `WIDE_THRESHOLD`: the
       footprint's shorter side over 21 cm, or over 17 cm for an object taller than the fingertips'
@@ -60,7 +65,8 @@ The *margin* says how clear the decision was, in [0, 1]: in step 3, the lead of 
 over the next; a flat resemblance near its threshold makes any decision close, so its own distance
 from the threshold, 2 |flat - 1/2|, bounds the margin from above, and so does the upright one's, and
 the low one's where the sphere leads, and the round one's where the box leads (on a round object the
-low one's too, then the squat one's if it is low, the wide one's if not; on an object not round, the
+low one's too, then the squat one's if it is low, the tall one's if not, and the wide one's if it is not
+tall; on an object not round, the
 thin-round one's, and the thin-narrow one's where the box or the cylinder leads).
 Without those resemblances (the paper's perception), both are the paper's argmax and its lead.
 """
@@ -75,6 +81,7 @@ SLENDER = "slender"  # not a choice: it turns an upright object's choice into th
 LOW = "low"  # not a choice: it turns the sphere's choice into the flat one (step 3b)
 ROUND = "round"  # not a choice: it turns the box's choice into the sphere's (step 3a)
 WIDE = "wide"  # not a choice: only a wide round object's box turns into the sphere (step 3a)
+TALL = "tall"  # not a choice: a tall round object's box turns into the cylinder (step 3a)
 SQUAT = "squat"  # not a choice: it turns a low round object's box into the flat choice (step 3a)
 THIN_ROUND = "thin_round"  # not a choice: it turns a thin round-sided object's box into the flat one (3c)
 THIN_NARROW = "thin_narrow"  # not a choice: it turns a thin object's box or cylinder, narrow at the grasp, flat (3c)
@@ -85,6 +92,7 @@ SLENDER_THRESHOLD = 0.5
 LOW_THRESHOLD = 0.5
 ROUND_THRESHOLD = 0.5
 WIDE_THRESHOLD = 0.5
+TALL_THRESHOLD = 0.5
 SQUAT_THRESHOLD = 0.5
 THIN_ROUND_THRESHOLD = 0.5
 THIN_NARROW_THRESHOLD = 0.5
@@ -117,8 +125,8 @@ def choose_shape(resemblances: dict, exclude=()) -> str | None:
 
 
 def _refined(shape: str, resemblances: dict, exclude=()) -> str:
-    """The argmax's `shape` refined by the measured shapes (step 3): a round object's box is the sphere,
-    or the flat choice if it is low and squat (3a), a low object's sphere the flat choice (3b), a thin
+    """The argmax's `shape` refined by the measured shapes (step 3): a round object's box is the cylinder
+    if it is tall, the sphere if it is wide, or the flat choice if it is low and squat (3a), a low object's sphere the flat choice (3b), a thin
     round-sided object's box, or a thin object's box or cylinder where it is narrow at the grasp, the
     flat choice (3c); a choice in `exclude` is not made."""
     round_, low, squat = _value(resemblances, ROUND), _value(resemblances, LOW), _value(resemblances, SQUAT)
@@ -126,6 +134,8 @@ def _refined(shape: str, resemblances: dict, exclude=()) -> str:
     is_round = math.isfinite(round_) and round_ >= ROUND_THRESHOLD
     wide = _value(resemblances, WIDE)
     is_wide = not math.isfinite(wide) or wide >= WIDE_THRESHOLD  # not measured: the rule before 0.38.0
+    if shape == "box" and tall_round(resemblances) and "cylinder" not in exclude:  # not measured: as before 0.53.0
+        return "cylinder"
     if shape == "box" and is_round and not is_low and is_wide and "sphere" not in exclude:
         return "sphere"
     if shape == "box" and is_round and is_low and FLAT not in exclude and math.isfinite(squat) \
@@ -140,6 +150,13 @@ def _refined(shape: str, resemblances: dict, exclude=()) -> str:
             and thin_narrow >= THIN_NARROW_THRESHOLD:
         return FLAT
     return shape
+
+
+def tall_round(resemblances: dict) -> bool:
+    """Whether step 3a sends the box's choice to the cylinder: a round object, not low, and tall."""
+    round_, low, tall = _value(resemblances, ROUND), _value(resemblances, LOW), _value(resemblances, TALL)
+    return (math.isfinite(round_) and round_ >= ROUND_THRESHOLD and not (math.isfinite(low) and low >= LOW_THRESHOLD)
+            and math.isfinite(tall) and tall >= TALL_THRESHOLD)
 
 
 def decision_margin(resemblances: dict) -> float:
@@ -171,16 +188,19 @@ def decision_margin(resemblances: dict) -> float:
     leader = max((s for s in SHAPES if s in resemblances), key=lambda s: _value(resemblances, s))
     low, round_ = _value(resemblances, LOW), _value(resemblances, ROUND)
     squat = _value(resemblances, SQUAT)
-    wide = _value(resemblances, WIDE)
+    wide, tall = _value(resemblances, WIDE), _value(resemblances, TALL)
     if leader == "box" and math.isfinite(round_):  # step 3a: roundness decides, lowness if round, then
-        # squatness if low, wideness if not
+        # squatness if low, tallness if not, then wideness if not tall
         bound = min(bound, 2.0 * abs(round_ - ROUND_THRESHOLD))
         if round_ >= ROUND_THRESHOLD and math.isfinite(low):
             bound = min(bound, 2.0 * abs(low - LOW_THRESHOLD))
             if low >= LOW_THRESHOLD and math.isfinite(squat):
                 bound = min(bound, 2.0 * abs(squat - SQUAT_THRESHOLD))
-            elif low < LOW_THRESHOLD and math.isfinite(wide):
-                bound = min(bound, 2.0 * abs(wide - WIDE_THRESHOLD))
+            elif low < LOW_THRESHOLD:
+                if math.isfinite(tall):
+                    bound = min(bound, 2.0 * abs(tall - TALL_THRESHOLD))
+                if not (math.isfinite(tall) and tall >= TALL_THRESHOLD) and math.isfinite(wide):
+                    bound = min(bound, 2.0 * abs(wide - WIDE_THRESHOLD))
     if leader == "sphere" and math.isfinite(low):  # step 3b
         bound = min(bound, 2.0 * abs(low - LOW_THRESHOLD))
     if leader == "cylinder" or (leader == "box" and not (math.isfinite(round_) and round_ >= ROUND_THRESHOLD)):  # 3c

@@ -27,7 +27,8 @@ from drake_grasp.primitives.estimators import is_upright
 from drake_grasp.primitives.flat import table_top_flatness
 from drake_grasp.primitives.low import table_top_lowness, table_top_squatness
 from drake_grasp.primitives.narrow import table_top_thin_narrowness
-from drake_grasp.primitives.round_sides import table_top_roundness, table_top_thin_roundness, table_top_wideness
+from drake_grasp.primitives.round_sides import (table_top_roundness, table_top_tallness, table_top_thin_roundness,
+                                               table_top_wideness)
 from drake_grasp.primitives.upright import table_top_slenderness, table_top_uprightness
 from drake_grasp.primitives.scores import SHAPES
 from drake_grasp.primitives.sequencer import ExplorationPhase, phase_value
@@ -303,7 +304,8 @@ def with_table_top(estimate: ObjectEstimate, table_top, elongated: bool) -> Obje
         principal_axis=principal_axis, extents=extents,
         resemblances={**estimate.resemblances, "flat": flat, "upright": upright, "slender": table_top_slenderness(t),
                       "low": table_top_lowness(t),
-                      "round": table_top_roundness(t), "wide": table_top_wideness(t), "squat": table_top_squatness(t),
+                      "round": table_top_roundness(t), "wide": table_top_wideness(t), "tall": table_top_tallness(t),
+                      "squat": table_top_squatness(t),
                       "thin_round": table_top_thin_roundness(t), "thin_narrow": table_top_thin_narrowness(t)},
         evidence={**estimate.evidence, **flat_evidence},
         table_top={"views": table_top.views, "cells": t.cells, "clipped": table_top.clipped,

@@ -60,6 +60,24 @@ estimated footprint's shorter side:
 So the middle for tall objects is 17 cm, between the tie below (union 2410_008, 16.6 cm: the box grasp
 2/2, the spherical 0/2) and the spherical grasp's lead above.
 
+**Tall** (`tall_resemblance`, behaviour 0.53.0): a round object taller than the fingertips' sweep
+(`low.LOW_HEIGHT`, 10.4 cm; a logistic step up in the height alone, width `low.LOW_WIDTH`) takes the
+cylindrical grasp where the box leads, before the wide step is asked (`primitives.decision`, step 3a).
+The cylindrical grasp puts the palm on the top and wraps the fingers round a level axis; the box grasp
+stands off a wide top (`grasps.box_grasp`), so its fingertips sweep a few centimetres less far down the
+sides, and on a tall round solid they close above its widest line (the mechanism the tall-and-wide step
+above names, not checked contact by contact). Measured camera-driven, the grasp forced, one attempt,
+trial seeds 1-2, on the blobs and unions of the development seeds 2404-2450 that read round (records:
+docs/results/holding/tall_round.md):
+
+* the round rule kept the box (10 large objects 17-24 cm, the box grasp holding 10/20): the cylindrical
+  grasp 20/20; on 22 objects 14-20 cm across that the box grasp holds (44/44), the cylindrical 44/44;
+* the wide step sent to the sphere (19 objects 18-25 cm): the spherical grasp 24/38, the cylindrical
+  27/38; and on fresh seeds 2431-2436 at 0.50.0 (large_fresh in round_rule.md) 17/22 and 16/22.
+
+So it is at least the box's equal where the box holds, beats it where the box slips, and ties the
+sphere, which stays second where the wide step asks for it (the cylinder used up).
+
 **Thin and round-sided** (`thin_round_resemblance`): the same round sides without the compact footprint,
 on an object lower than `THIN_ROUND_HEIGHT` (3.2 cm) that the flower grasp can land round (its
 footprint's shorter side under `low.FLOWER_MAX_WIDTH`). A bar, a tube or an elongated pebble lying
@@ -130,6 +148,17 @@ def table_top_wideness(estimate) -> float:
     """`wide_resemblance` of a table-top estimate (`table_top.TableTopEstimate`): the spans along its
     footprint's sides, and its height."""
     return wide_resemblance(np.asarray(estimate.extents_sides, float)[:2], float(estimate.height))
+
+
+def tall_resemblance(height: float) -> float:
+    """How much an object `height` m tall stands above the fingertips' sweep, in [0, 1]: a logistic step
+    up in the height alone, 1/2 at `low.LOW_HEIGHT` (module docstring); NaN when not finite."""
+    return 1.0 - low_resemblance(float(height))
+
+
+def table_top_tallness(estimate) -> float:
+    """`tall_resemblance` of a table-top estimate (`table_top.TableTopEstimate`): its height."""
+    return tall_resemblance(float(estimate.height))
 
 
 def round_sided(edge_rise: float) -> float:
